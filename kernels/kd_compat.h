@@ -1,0 +1,39 @@
+/* Qualifier and type compatibility so device code compiles both as OpenCL C and as C++.
+ * Every header under kernels/ includes this first and nothing outside kernels/. */
+#ifndef KD_COMPAT_H
+#define KD_COMPAT_H
+
+#ifdef __OPENCL_VERSION__
+/* ---- OpenCL C ---- */
+#define KD_INLINE inline
+#define KD_GLOBAL __global
+#define KD_CONSTANT __constant
+typedef uint kd_u32;
+typedef int kd_i32;
+KD_INLINE float kd_as_float(kd_u32 bits) { return as_float(bits); }
+KD_INLINE kd_u32 kd_as_uint(float value) { return as_uint(value); }
+#define KD_STATIC_ASSERT(cond, msg)
+#else
+/* ---- C++ ---- */
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#define KD_INLINE inline
+#define KD_GLOBAL
+#define KD_CONSTANT
+typedef uint32_t kd_u32;
+typedef int32_t kd_i32;
+inline float kd_as_float(kd_u32 bits) {
+  float value;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
+}
+inline kd_u32 kd_as_uint(float value) {
+  kd_u32 bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  return bits;
+}
+#define KD_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
+#endif
+
+#endif /* KD_COMPAT_H */

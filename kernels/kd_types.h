@@ -1,0 +1,47 @@
+/* Structs shared between the host and the device, byte for byte. No float3 in buffers:
+ * it is 16 bytes on OpenCL devices and 12 on the host. */
+#ifndef KD_TYPES_H
+#define KD_TYPES_H
+
+#include "kd_compat.h"
+
+/* One k-d tree node, 8 bytes (formats/kdtree.md).
+ *   inner: payload = bits of the split position (float32); header = far_child << 2 | axis (0,1,2).
+ *          The near ("below") child is the next node in the array.
+ *   leaf:  payload = first index into the leaf-triangle array; header = count << 2 | 3. */
+typedef struct KdNode {
+  kd_u32 payload;
+  kd_u32 header;
+} KdNode;
+KD_STATIC_ASSERT(sizeof(KdNode) == 8, "KdNode is 8 bytes on disk and on the device");
+
+#define KD_LEAF_TAG 3u
+#define KD_MAX_CHILD_INDEX ((1u << 30) - 1u)
+
+KD_INLINE int kd_node_is_leaf(KdNode node) { return (node.header & 3u) == KD_LEAF_TAG; }
+KD_INLINE kd_u32 kd_node_axis(KdNode node) { return node.header & 3u; }
+KD_INLINE float kd_node_split(KdNode node) { return kd_as_float(node.payload); }
+KD_INLINE kd_u32 kd_node_far_child(KdNode node) { return node.header >> 2; }
+KD_INLINE kd_u32 kd_leaf_first(KdNode node) { return node.payload; }
+KD_INLINE kd_u32 kd_leaf_count(KdNode node) { return node.header >> 2; }
+
+/* One record of a ray file (formats/rays.md): little-endian float32, 32 bytes. */
+typedef struct RayRecord {
+  float ox, oy, oz;
+  float dx, dy, dz;
+  float tmin, tmax;
+} RayRecord;
+KD_STATIC_ASSERT(sizeof(RayRecord) == 32, "RayRecord is 32 bytes");
+
+/* One record of a hit file: t = +inf and triangle = KD_NO_HIT on a miss; u, v barycentrics
+ * of vertices 1 and 2. 16 bytes. */
+typedef struct HitRecord {
+  float t;
+  kd_u32 triangle;
+  float u, v;
+} HitRecord;
+KD_STATIC_ASSERT(sizeof(HitRecord) == 16, "HitRecord is 16 bytes");
+
+#define KD_NO_HIT 0xFFFFFFFFu
+
+#endif /* KD_TYPES_H */

@@ -1,0 +1,65 @@
+// Reading and writing the section container shared by .kdscene and .kdtree
+// (formats/container.md). The writer is atomic (temporary file + rename); the reader
+// checks magic, version, header and section sizes against the file size, and the payload
+// checksum before the caller interprets a single byte.
+#pragma once
+
+#include <kdray/format.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace kdray {
+
+struct SectionData {
+  uint32_t id;
+  const void* data;
+  uint64_t size;
+};
+
+struct ContainerHeaderInfo {
+  const char* magic;          // 8 bytes
+  uint32_t version;
+  uint64_t flags;
+  uint64_t content_hash;
+};
+
+// Writes header, section table and sections to `path` through a temporary file in the
+// same directory that is flushed and renamed into place. Throws kdray::Error.
+void write_container(const std::string& path, const ContainerHeaderInfo& header,
+                     const std::vector<SectionData>& sections);
+
+// Called once per section, in file order, with its id and size; returns where the
+// section's bytes go (at least `size` bytes), or nullptr to skip an unknown section.
+// May throw kdray::Error when the size is impossible for that section.
+using SectionSink = std::function<void*(uint32_t id, uint64_t size)>;
+
+struct ContainerContents {
+  format::FileHeader header;
+  std::vector<format::SectionEntry> sections;
+};
+
+// Reads a container, streaming each section straight into the memory the sink returns.
+// Throws kdray::Error naming `path` for a missing file, wrong magic ("not a <what> file"),
+// a newer version, truncation, sizes beyond the file, overlapping sections or a checksum
+// mismatch. Data written through the sink must not be trusted unless this returns.
+// `kind_name` is used in messages, e.g. "kdscene".
+ContainerContents read_container(const std::string& path, const char (&magic)[8],
+                                 uint32_t max_version, const char* kind_name,
+                                 const SectionSink& sink);
+
+// Reads only the header and section table (validated against the file size, no checksum):
+// cheap identification for kdinfo and for stale-tree checks before a full load.
+ContainerContents peek_container(const std::string& path, const char (&magic)[8],
+                                 uint32_t max_version, const char* kind_name);
+
+// 8-byte magic of the file at `path`, or an empty string if it cannot be read.
+std::string file_magic(const std::string& path);
+
+// Formats a 64-bit hash the way every tool prints it: 16 lowercase hex digits.
+std::string hash_hex(uint64_t hash);
+
+}  // namespace kdray

@@ -1,0 +1,246 @@
+#include <kdray/container_file.h>
+#include <kdray/error.h>
+
+#include <xxhash.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <random>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace kdray {
+namespace {
+
+uint64_t align_up(uint64_t value, uint64_t alignment) {
+  return (value + alignment - 1) / alignment * alignment;
+}
+
+class FileDescriptor {
+ public:
+  explicit FileDescriptor(int fd) : fd_(fd) {}
+  ~FileDescriptor() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  FileDescriptor(const FileDescriptor&) = delete;
+  FileDescriptor& operator=(const FileDescriptor&) = delete;
+  int get() const { return fd_; }
+  int release() {
+    int fd = fd_;
+    fd_ = -1;
+    return fd;
+  }
+
+ private:
+  int fd_;
+};
+
+void write_all(int fd, const void* data, uint64_t size, const std::string& path) {
+  const char* bytes = static_cast<const char*>(data);
+  while (size > 0) {
+    ssize_t written = ::write(fd, bytes, std::min<uint64_t>(size, 1u << 30));
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      throw Error(path, std::string("cannot write: ") + std::strerror(errno));
+    }
+    bytes += written;
+    size -= static_cast<uint64_t>(written);
+  }
+}
+
+// Reads exactly `size` bytes; false on a short read (the file is shorter than it claims).
+bool read_all(int fd, void* data, uint64_t size, const std::string& path) {
+  char* bytes = static_cast<char*>(data);
+  while (size > 0) {
+    ssize_t got = ::read(fd, bytes, std::min<uint64_t>(size, 1u << 30));
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      throw Error(path, std::string("cannot read: ") + std::strerror(errno));
+    }
+    if (got == 0) return false;
+    bytes += got;
+    size -= static_cast<uint64_t>(got);
+  }
+  return true;
+}
+
+std::string temporary_name_for(const std::string& path) {
+  std::random_device entropy;
+  char suffix[16];
+  std::snprintf(suffix, sizeof suffix, ".tmp-%08x", entropy());
+  return path + suffix;
+}
+
+struct OpenedContainer {
+  std::unique_ptr<FileDescriptor> file;
+  ContainerContents contents;
+};
+
+OpenedContainer open_and_validate(const std::string& path, const char (&magic)[8],
+                                  uint32_t max_version, const char* kind_name) {
+  int raw_fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (raw_fd < 0) throw Error(path, std::string("cannot open: ") + std::strerror(errno));
+  OpenedContainer opened{std::make_unique<FileDescriptor>(raw_fd), {}};
+  struct stat status {};
+  if (::fstat(raw_fd, &status) != 0 || !S_ISREG(status.st_mode))
+    throw Error(path, "not a regular file");
+  const uint64_t file_size = static_cast<uint64_t>(status.st_size);
+
+  format::FileHeader& header = opened.contents.header;
+  if (file_size < 8) throw Error(path, std::string("not a ") + kind_name + " file (too short for the magic number)");
+  if (!read_all(raw_fd, &header, std::min<uint64_t>(sizeof header, file_size), path))
+    throw Error(path, "cannot read the header");
+  if (std::memcmp(header.magic, magic, 8) != 0)
+    throw Error(path, std::string("not a ") + kind_name + " file (wrong magic number)");
+  if (file_size < sizeof header)
+    throw Error(path, "truncated: the file ends inside the header (" + std::to_string(file_size) + " bytes)");
+  if (header.version == 0 || header.version > max_version)
+    throw Error(path, std::string(kind_name) + " format version " + std::to_string(header.version) +
+                          " is not supported (this build reads versions up to " + std::to_string(max_version) + ")");
+  if (header.header_size != sizeof header)
+    throw Error(path, "bad header size " + std::to_string(header.header_size));
+  if (header.payload_size != file_size - sizeof header) {
+    if (header.payload_size > file_size - sizeof header)
+      throw Error(path, "truncated: the header announces " + std::to_string(header.payload_size + sizeof header) +
+                            " bytes but the file has " + std::to_string(file_size));
+    throw Error(path, "trailing bytes: the header announces " + std::to_string(header.payload_size + sizeof header) +
+                          " bytes but the file has " + std::to_string(file_size));
+  }
+  if (header.section_count > format::kMaxSections)
+    throw Error(path, "implausible section count " + std::to_string(header.section_count));
+  const uint64_t table_bytes = uint64_t(header.section_count) * sizeof(format::SectionEntry);
+  if (table_bytes > header.payload_size) throw Error(path, "truncated: the section table does not fit in the file");
+
+  auto& sections = opened.contents.sections;
+  sections.resize(header.section_count);
+  if (!read_all(raw_fd, sections.data(), table_bytes, path)) throw Error(path, "truncated section table");
+  uint64_t expected_offset = align_up(sizeof header + table_bytes, format::kSectionAlignment);
+  for (const auto& section : sections) {
+    // Sections are laid out in table order at aligned offsets: anything else is damage.
+    if (section.offset != expected_offset || section.offset > file_size || section.size > file_size - section.offset)
+      throw Error(path, "section " + std::to_string(section.id) + " (offset " + std::to_string(section.offset) +
+                            ", " + std::to_string(section.size) + " bytes) lies outside the file or overlaps another");
+    expected_offset = align_up(section.offset + section.size, format::kSectionAlignment);
+  }
+  return opened;
+}
+
+}  // namespace
+
+void write_container(const std::string& path, const ContainerHeaderInfo& info,
+                     const std::vector<SectionData>& sections) {
+  format::FileHeader header{};
+  std::memcpy(header.magic, info.magic, 8);
+  header.version = info.version;
+  header.header_size = sizeof header;
+  header.flags = info.flags;
+  header.content_hash = info.content_hash;
+  header.section_count = static_cast<uint32_t>(sections.size());
+
+  std::vector<format::SectionEntry> table(sections.size());
+  uint64_t offset = align_up(sizeof header + table.size() * sizeof(format::SectionEntry), format::kSectionAlignment);
+  for (size_t i = 0; i < sections.size(); ++i) {
+    table[i] = {sections[i].id, 0, offset, sections[i].size};
+    offset = align_up(offset + sections[i].size, format::kSectionAlignment);
+  }
+  const uint64_t file_size = sections.empty() ? sizeof header + 0 : table.back().offset + table.back().size;
+  header.payload_size = file_size - sizeof header;
+
+  // The checksum covers everything after the header, padding included, in file order.
+  static const char kZeros[format::kSectionAlignment] = {};
+  XXH3_state_t* state = XXH3_createState();
+  XXH3_64bits_reset(state);
+  uint64_t position = sizeof header;
+  auto feed = [&](const void* data, uint64_t size) {
+    XXH3_64bits_update(state, data, size);
+    position += size;
+  };
+  feed(table.data(), table.size() * sizeof(format::SectionEntry));
+  for (size_t i = 0; i < sections.size(); ++i) {
+    feed(kZeros, table[i].offset - position);
+    feed(sections[i].data, sections[i].size);
+  }
+  header.payload_checksum = XXH3_64bits_digest(state);
+  XXH3_freeState(state);
+
+  const std::string temporary = temporary_name_for(path);
+  FileDescriptor file(::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644));
+  if (file.get() < 0) throw Error(path, std::string("cannot create: ") + std::strerror(errno));
+  try {
+    position = 0;
+    auto put = [&](const void* data, uint64_t size) {
+      write_all(file.get(), data, size, path);
+      position += size;
+    };
+    put(&header, sizeof header);
+    put(table.data(), table.size() * sizeof(format::SectionEntry));
+    for (size_t i = 0; i < sections.size(); ++i) {
+      put(kZeros, table[i].offset - position);
+      put(sections[i].data, sections[i].size);
+    }
+    if (::fsync(file.get()) != 0) throw Error(path, std::string("cannot flush: ") + std::strerror(errno));
+    if (::close(file.release()) != 0) throw Error(path, std::string("cannot close: ") + std::strerror(errno));
+    if (::rename(temporary.c_str(), path.c_str()) != 0)
+      throw Error(path, std::string("cannot rename the temporary file into place: ") + std::strerror(errno));
+  } catch (...) {
+    ::unlink(temporary.c_str());
+    throw;
+  }
+}
+
+ContainerContents peek_container(const std::string& path, const char (&magic)[8], uint32_t max_version,
+                                 const char* kind_name) {
+  return open_and_validate(path, magic, max_version, kind_name).contents;
+}
+
+ContainerContents read_container(const std::string& path, const char (&magic)[8], uint32_t max_version,
+                                 const char* kind_name, const SectionSink& sink) {
+  OpenedContainer opened = open_and_validate(path, magic, max_version, kind_name);
+  const auto& header = opened.contents.header;
+  const auto& sections = opened.contents.sections;
+  const int fd = opened.file->get();
+
+  XXH3_state_t* state = XXH3_createState();
+  std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state_owner(state, &XXH3_freeState);
+  XXH3_64bits_reset(state);
+  XXH3_64bits_update(state, sections.data(), sections.size() * sizeof(format::SectionEntry));
+  uint64_t position = sizeof header + sections.size() * sizeof(format::SectionEntry);
+  std::vector<char> scratch;
+  for (const auto& section : sections) {
+    const uint64_t padding = section.offset - position;
+    char pad[format::kSectionAlignment];
+    if (!read_all(fd, pad, padding, path)) throw Error(path, "truncated");
+    XXH3_64bits_update(state, pad, padding);
+    void* destination = sink(section.id, section.size);
+    if (destination == nullptr) {
+      scratch.resize(section.size);
+      destination = scratch.data();
+    }
+    if (!read_all(fd, destination, section.size, path)) throw Error(path, "truncated");
+    XXH3_64bits_update(state, destination, section.size);
+    position = section.offset + section.size;
+  }
+  if (XXH3_64bits_digest(state) != header.payload_checksum)
+    throw Error(path, "checksum mismatch: the file is damaged");
+  return std::move(opened.contents);
+}
+
+std::string file_magic(const std::string& path) {
+  FileDescriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  char magic[8];
+  if (file.get() < 0 || !read_all(file.get(), magic, 8, path)) return {};
+  return std::string(magic, 8);
+}
+
+std::string hash_hex(uint64_t hash) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
+}  // namespace kdray

@@ -1,0 +1,158 @@
+/* Ray/box and ray/triangle tests shared by the CPU reference traversal and the OpenCL kernels.
+ *
+ * The triangle test is the watertight one of Woop, Benthin & Wald, "Watertight Ray/Triangle
+ * Intersection" (JCGT 2013): the ray is sheared so that it runs along +z, and the three 2D edge
+ * functions decide inside/outside. Rays through a shared edge or vertex of two triangles hit at
+ * least one of them, because each edge function is computed from the same rounded products in
+ * both triangles (so it is exactly negated there). When an edge function rounds to exactly 0 it
+ * is recomputed in double precision, where the products of two floats are exact. Devices without
+ * double (no cl_khr_fp64) keep the float 0, which counts as "on the edge": still no leaks, but a
+ * hit may be reported on both sides of an edge.
+ *
+ * Contraction of a*b - c*d into an FMA would break that symmetry, so it is switched off here. */
+#ifndef KD_GEOMETRY_H
+#define KD_GEOMETRY_H
+
+#include "kd_compat.h"
+
+#ifdef __OPENCL_VERSION__
+#pragma OPENCL FP_CONTRACT OFF
+#if defined(cl_khr_fp64) || defined(__opencl_c_fp64)
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#define KD_HAS_DOUBLE 1
+#else
+#define KD_HAS_DOUBLE 0
+#endif
+#else
+#define KD_HAS_DOUBLE 1
+#endif
+
+/* Direction components smaller than this get a finite reciprocal of the same sign instead of
+ * 1/0: t = (plane - origin) * reciprocal then stays a number (0 * huge = 0), never NaN. */
+#define KD_TINY_DIRECTION 1e-30f
+#define KD_HUGE_RECIPROCAL 1e30f
+
+#ifdef __OPENCL_VERSION__
+KD_INLINE float kd_absf(float x) { return fabs(x); }
+KD_INLINE float kd_minf(float a, float b) { return fmin(a, b); }
+KD_INLINE float kd_maxf(float a, float b) { return fmax(a, b); }
+KD_INLINE float kd_copysignf(float magnitude, float sign) { return copysign(magnitude, sign); }
+KD_INLINE int kd_isfinitef(float x) { return isfinite(x); }
+#else
+KD_INLINE float kd_absf(float x) { return std::fabs(x); }
+KD_INLINE float kd_minf(float a, float b) { return std::fmin(a, b); }
+KD_INLINE float kd_maxf(float a, float b) { return std::fmax(a, b); }
+KD_INLINE float kd_copysignf(float magnitude, float sign) { return std::copysign(magnitude, sign); }
+KD_INLINE int kd_isfinitef(float x) { return std::isfinite(x) ? 1 : 0; }
+#endif
+
+/* Everything a traversal needs about one ray, computed once. */
+typedef struct KdRay {
+  float org[3];
+  float dir[3];
+  float inv_dir[3]; /* finite: see KD_HUGE_RECIPROCAL */
+  float tmin, tmax;
+  int kx, ky, kz;    /* kz: the axis of the largest |dir|; kx, ky keep the winding */
+  float sx, sy, sz;  /* shear constants */
+} KdRay;
+
+KD_INLINE float kd_safe_reciprocal(float d) {
+  return kd_absf(d) > KD_TINY_DIRECTION ? 1.0f / d : kd_copysignf(KD_HUGE_RECIPROCAL, d);
+}
+
+/* Fills `ray`; returns 0 for a ray no triangle can be hit by (non-finite numbers, zero
+ * direction, empty interval). */
+KD_INLINE int kd_ray_setup(KdRay* ray, float ox, float oy, float oz, float dx, float dy, float dz,
+                           float tmin, float tmax) {
+  ray->org[0] = ox;
+  ray->org[1] = oy;
+  ray->org[2] = oz;
+  ray->dir[0] = dx;
+  ray->dir[1] = dy;
+  ray->dir[2] = dz;
+  ray->tmin = tmin;
+  ray->tmax = tmax;
+  for (int k = 0; k < 3; ++k) ray->inv_dir[k] = kd_safe_reciprocal(ray->dir[k]);
+  int kz = 0;
+  if (kd_absf(dy) > kd_absf(ray->dir[kz])) kz = 1;
+  if (kd_absf(dz) > kd_absf(ray->dir[kz])) kz = 2;
+  int kx = kz == 2 ? 0 : kz + 1;
+  int ky = kx == 2 ? 0 : kx + 1;
+  if (ray->dir[kz] < 0.0f) {
+    int swap = kx;
+    kx = ky;
+    ky = swap;
+  }
+  ray->kx = kx;
+  ray->ky = ky;
+  ray->kz = kz;
+  ray->sx = ray->dir[kx] / ray->dir[kz];
+  ray->sy = ray->dir[ky] / ray->dir[kz];
+  ray->sz = 1.0f / ray->dir[kz];
+  int finite = kd_isfinitef(ox) && kd_isfinitef(oy) && kd_isfinitef(oz) && kd_isfinitef(dx) &&
+               kd_isfinitef(dy) && kd_isfinitef(dz) && !(tmin != tmin) && !(tmax != tmax);
+  return finite && ray->dir[kz] != 0.0f && tmin < tmax;
+}
+
+/* Slab test against [bmin, bmax]; narrows [*t_near, *t_far] and returns 0 if it becomes empty.
+ * The far distance is widened by a few ulps (pbrt's 1 + 2*gamma(3)) so rounding never drops a
+ * box the ray really touches. */
+KD_INLINE int kd_ray_box(const KdRay* ray, const float bmin[3], const float bmax[3], float* t_near,
+                         float* t_far) {
+  float lo = *t_near;
+  float hi = *t_far;
+  for (int k = 0; k < 3; ++k) {
+    float t0 = (bmin[k] - ray->org[k]) * ray->inv_dir[k];
+    float t1 = (bmax[k] - ray->org[k]) * ray->inv_dir[k];
+    float entry = kd_minf(t0, t1);
+    float exit = kd_maxf(t0, t1) * (1.0f + 4.0f * 5.96046448e-08f);
+    lo = kd_maxf(lo, entry);
+    hi = kd_minf(hi, exit);
+  }
+  *t_near = lo;
+  *t_far = hi;
+  return lo <= hi;
+}
+
+/* Watertight ray/triangle test. Returns 1 when the ray hits the triangle (a, b, c) with
+ * ray->tmin < t < t_max and writes t and the barycentrics u (of b) and v (of c). Triangles
+ * seen edge-on (determinant 0) are missed from both sides. */
+KD_INLINE int kd_ray_triangle(const KdRay* ray, const float a[3], const float b[3], const float c[3],
+                              float t_max, float* t_out, float* u_out, float* v_out) {
+  const int kx = ray->kx, ky = ray->ky, kz = ray->kz;
+  const float A[3] = {a[0] - ray->org[0], a[1] - ray->org[1], a[2] - ray->org[2]};
+  const float B[3] = {b[0] - ray->org[0], b[1] - ray->org[1], b[2] - ray->org[2]};
+  const float C[3] = {c[0] - ray->org[0], c[1] - ray->org[1], c[2] - ray->org[2]};
+  const float ax = A[kx] - ray->sx * A[kz];
+  const float ay = A[ky] - ray->sy * A[kz];
+  const float bx = B[kx] - ray->sx * B[kz];
+  const float by = B[ky] - ray->sy * B[kz];
+  const float cx = C[kx] - ray->sx * C[kz];
+  const float cy = C[ky] - ray->sy * C[kz];
+  float U = cx * by - cy * bx;
+  float V = ax * cy - ay * cx;
+  float W = bx * ay - by * ax;
+#if KD_HAS_DOUBLE
+  if (U == 0.0f || V == 0.0f || W == 0.0f) {
+    U = (float)((double)cx * (double)by - (double)cy * (double)bx);
+    V = (float)((double)ax * (double)cy - (double)ay * (double)cx);
+    W = (float)((double)bx * (double)ay - (double)by * (double)ax);
+  }
+#endif
+  if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return 0;
+  const float det = U + V + W;
+  if (det == 0.0f) return 0;
+  const float az = ray->sz * A[kz];
+  const float bz = ray->sz * B[kz];
+  const float cz = ray->sz * C[kz];
+  const float T = U * az + V * bz + W * cz;
+  const float inv_det = 1.0f / det;
+  const float t = T * inv_det;
+  if (!(t > ray->tmin && t < t_max)) return 0;
+  *t_out = t;
+  *u_out = V * inv_det;
+  *v_out = W * inv_det;
+  return 1;
+}
+
+#endif /* KD_GEOMETRY_H */

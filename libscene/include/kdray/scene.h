@@ -61,6 +61,7 @@ struct ImportStats {
   uint64_t dropped_non_finite = 0;  // NaN or Inf vertex
   uint64_t ignored_points = 0;
   uint64_t ignored_lines = 0;
+  std::vector<std::string> warnings;  // e.g. a texture that could not be read
 };
 
 struct Bounds {

@@ -1,0 +1,197 @@
+// Import of every format Assimp reads. Assimp triangulates (ear clipping) and validates; the
+// node hierarchy is walked here so each mesh instance lands in world space, once per use.
+#include "importers.h"
+
+#include "material_mapping.h"
+#include "mesh_builder.h"
+#include "polygon.h"
+
+#include <kdray/error.h>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <cmath>
+#include <filesystem>
+#include <utility>
+
+namespace kdray {
+namespace {
+
+constexpr unsigned kPostProcess = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                  aiProcess_ValidateDataStructure;
+
+Vec3 to_vec3(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+Vec3 to_vec3(const aiColor3D& c) { return {c.r, c.g, c.b}; }
+
+Vec3 normalized(const aiVector3D& v) {
+  const float length = v.Length();
+  return length > 0 ? Vec3{v.x / length, v.y / length, v.z / length} : Vec3{};
+}
+
+SourceMaterial source_material(const aiMaterial& material) {
+  SourceMaterial source;
+  aiString name;
+  if (material.Get(AI_MATKEY_NAME, name) == AI_SUCCESS) source.name = name.C_Str();
+  aiColor3D color;
+  if (material.Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS) source.diffuse = to_vec3(color);
+  aiColor4D base_color;
+  if (material.Get(AI_MATKEY_BASE_COLOR, base_color) == AI_SUCCESS)
+    source.diffuse = {base_color.r, base_color.g, base_color.b};
+  if (material.Get(AI_MATKEY_COLOR_SPECULAR, color) == AI_SUCCESS) source.specular = to_vec3(color);
+  if (material.Get(AI_MATKEY_COLOR_EMISSIVE, color) == AI_SUCCESS) source.emission = to_vec3(color);
+  float intensity = 1;
+  if (material.Get(AI_MATKEY_EMISSIVE_INTENSITY, intensity) == AI_SUCCESS)
+    source.emission = {source.emission.x * intensity, source.emission.y * intensity, source.emission.z * intensity};
+  material.Get(AI_MATKEY_SHININESS, source.shininess);
+  material.Get(AI_MATKEY_REFRACTI, source.ior);
+  material.Get(AI_MATKEY_OPACITY, source.opacity);
+  material.Get(AI_MATKEY_TRANSMISSION_FACTOR, source.transmission);
+  float value = 0;
+  if (material.Get(AI_MATKEY_METALLIC_FACTOR, value) == AI_SUCCESS) source.metallic = value;
+  if (material.Get(AI_MATKEY_ROUGHNESS_FACTOR, value) == AI_SUCCESS) source.roughness = value;
+  // Assimp's OBJ and 3DS importers record a mirror or glass illumination model as the shading mode.
+  int shading = 0;
+  if (material.Get(AI_MATKEY_SHADING_MODEL, shading) == AI_SUCCESS && shading == aiShadingMode_Fresnel) source.illum = 5;
+  aiString texture;
+  if (material.GetTexture(aiTextureType_BASE_COLOR, 0, &texture) == AI_SUCCESS ||
+      material.GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS)
+    source.diffuse_texture = texture.C_Str();
+  return source;
+}
+
+aiMatrix4x4 global_transform(const aiNode* node) {
+  aiMatrix4x4 transform;
+  for (; node != nullptr; node = node->mParent) transform = node->mTransformation * transform;
+  return transform;
+}
+
+class AssimpConverter {
+ public:
+  AssimpConverter(const std::string& path, const aiScene& source, Scene& scene)
+      : path_(path), source_(source), scene_(scene), builder_(scene.import_stats) {}
+
+  void convert() {
+    convert_materials();
+    // Iterative walk: a hostile file's deep hierarchy must not exhaust the stack.
+    std::vector<std::pair<const aiNode*, aiMatrix4x4>> pending = {{source_.mRootNode, source_.mRootNode->mTransformation}};
+    while (!pending.empty()) {
+      auto [node, transform] = pending.back();
+      pending.pop_back();
+      for (unsigned i = 0; i < node->mNumMeshes; ++i) add_mesh_instance(*source_.mMeshes[node->mMeshes[i]], transform);
+      for (unsigned i = 0; i < node->mNumChildren; ++i)
+        pending.emplace_back(node->mChildren[i], transform * node->mChildren[i]->mTransformation);
+    }
+    builder_.finish(scene_);
+    convert_cameras();
+  }
+
+ private:
+  void convert_materials() {
+    TextureCache textures(scene_);
+    const std::filesystem::path directory = std::filesystem::path(path_).parent_path();
+    for (unsigned i = 0; i < source_.mNumMaterials; ++i) {
+      const SourceMaterial source = source_material(*source_.mMaterials[i]);
+      Material material = map_material(source);
+      if (!source.diffuse_texture.empty()) {
+        if (const aiTexture* embedded = source_.GetEmbeddedTexture(source.diffuse_texture.c_str()))
+          material.diffuse_texture = embedded_texture(textures, source.diffuse_texture, *embedded);
+        else
+          material.diffuse_texture = textures.from_file((directory / source.diffuse_texture).string());
+      }
+      scene_.materials.push_back(material);
+    }
+  }
+
+  int32_t embedded_texture(TextureCache& textures, const std::string& key, const aiTexture& texture) {
+    if (texture.mHeight == 0)  // compressed image file bytes (PNG, JPEG...)
+      return textures.from_memory(key, texture.pcData, texture.mWidth, texture.achFormatHint);
+    Texture decoded;  // raw BGRA texels
+    decoded.name = key;
+    decoded.width = texture.mWidth;
+    decoded.height = texture.mHeight;
+    decoded.rgba.resize(uint64_t(texture.mWidth) * texture.mHeight * 4);
+    for (uint64_t i = 0; i < uint64_t(texture.mWidth) * texture.mHeight; ++i) {
+      const aiTexel& texel = texture.pcData[i];
+      uint8_t* out = &decoded.rgba[i * 4];
+      out[0] = texel.r, out[1] = texel.g, out[2] = texel.b, out[3] = texel.a;
+    }
+    scene_.textures.push_back(std::move(decoded));
+    return int32_t(scene_.textures.size() - 1);
+  }
+
+  void add_mesh_instance(const aiMesh& mesh, const aiMatrix4x4& transform) {
+    aiMatrix3x3 normal_transform(transform);
+    normal_transform.Inverse().Transpose();
+    std::vector<uint32_t> vertex(mesh.mNumVertices);
+    const bool has_uvs = mesh.HasTextureCoords(0);
+    for (unsigned i = 0; i < mesh.mNumVertices; ++i) {
+      std::optional<Vec3> normal;
+      if (mesh.HasNormals()) normal = normalized(normal_transform * mesh.mNormals[i]);
+      std::optional<Vec2> uv;
+      if (has_uvs) uv = Vec2{mesh.mTextureCoords[0][i].x, mesh.mTextureCoords[0][i].y};
+      vertex[i] = builder_.add_vertex(to_vec3(transform * mesh.mVertices[i]), normal, uv);
+    }
+    std::vector<uint32_t> polygon;
+    std::vector<Vec3> corners;
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const aiFace& face = mesh.mFaces[f];
+      if (face.mNumIndices == 1) ++scene_.import_stats.ignored_points;
+      if (face.mNumIndices == 2) ++scene_.import_stats.ignored_lines;
+      polygon.clear();
+      corners.clear();
+      for (unsigned i = 0; i < face.mNumIndices; ++i) {
+        if (face.mIndices[i] >= mesh.mNumVertices) throw Error(path_, "a face refers to a vertex that does not exist");
+        polygon.push_back(vertex[face.mIndices[i]]);
+        corners.push_back(to_vec3(transform * mesh.mVertices[face.mIndices[i]]));
+      }
+      // Triangulate normally leaves only triangles; larger faces are ear-clipped as for OBJ.
+      for (const auto& triangle : triangulate_polygon(corners))
+        builder_.add_triangle(polygon[triangle[0]], polygon[triangle[1]], polygon[triangle[2]], mesh.mMaterialIndex);
+    }
+  }
+
+  void convert_cameras() {
+    for (unsigned i = 0; i < source_.mNumCameras; ++i) {
+      const aiCamera& camera = *source_.mCameras[i];
+      const aiMatrix4x4 transform = global_transform(source_.mRootNode->FindNode(camera.mName));
+      const aiMatrix3x3 rotation(transform);
+      Camera converted;
+      converted.name = camera.mName.C_Str();
+      const aiVector3D position = transform * camera.mPosition;
+      converted.position = to_vec3(position);
+      converted.target = to_vec3(position + rotation * camera.mLookAt);
+      converted.up = normalized(rotation * camera.mUp);
+      // Assimp stores half the horizontal field of view.
+      const float half_horizontal = camera.mHorizontalFOV;
+      const float vertical = camera.mAspect > 0 ? 2 * std::atan(std::tan(half_horizontal) / camera.mAspect) : 2 * half_horizontal;
+      if (std::isfinite(vertical) && vertical > 0 && vertical < float(M_PI))
+        converted.vertical_fov_degrees = vertical * float(180.0 / M_PI);
+      scene_.cameras.push_back(converted);
+    }
+  }
+
+  std::string path_;
+  const aiScene& source_;
+  Scene& scene_;
+  MeshBuilder builder_;
+};
+
+}  // namespace
+
+Scene import_with_assimp(const std::string& path) {
+  Assimp::Importer importer;
+  const aiScene* source = importer.ReadFile(path, kPostProcess);
+  if (source == nullptr || source->mRootNode == nullptr) {
+    std::string message = importer.GetErrorString();
+    while (!message.empty() && (message.back() == '\n' || message.back() == '\r')) message.pop_back();
+    throw Error(path, "Assimp cannot read it: " + (message.empty() ? std::string("unknown error") : message));
+  }
+  Scene scene;
+  scene.import_stats.importer = "assimp";
+  AssimpConverter(path, *source, scene).convert();
+  return scene;
+}
+
+}  // namespace kdray

@@ -1,0 +1,162 @@
+// OBJ import through tinyobjloader. Polygons are read untriangulated and ear-clipped here
+// (polygon.cpp): the library's own triangulation is a fan, wrong for concave faces.
+#include "importers.h"
+
+#include "material_mapping.h"
+#include "mesh_builder.h"
+#include "polygon.h"
+
+#include <kdray/error.h>
+
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <unordered_map>
+
+namespace kdray {
+namespace {
+
+// One OBJ corner (v/vt/vn); corners that agree on all three share a scene vertex.
+struct CornerKey {
+  int position, uv, normal;
+  bool operator==(const CornerKey& other) const {
+    return position == other.position && uv == other.uv && normal == other.normal;
+  }
+};
+struct CornerKeyHash {
+  size_t operator()(const CornerKey& key) const {
+    return (size_t(uint32_t(key.position)) * 0x9E3779B97F4A7C15ull) ^ (size_t(uint32_t(key.uv)) * 0xC2B2AE3D27D4EB4Full) ^
+           (size_t(uint32_t(key.normal)) * 0x165667B19E3779F9ull);
+  }
+};
+
+SourceMaterial source_material(const tinyobj::material_t& mtl) {
+  SourceMaterial source;
+  source.name = mtl.name;
+  source.diffuse = {mtl.diffuse[0], mtl.diffuse[1], mtl.diffuse[2]};
+  source.specular = {mtl.specular[0], mtl.specular[1], mtl.specular[2]};
+  source.emission = {mtl.emission[0], mtl.emission[1], mtl.emission[2]};
+  source.shininess = mtl.shininess;
+  source.ior = mtl.ior;
+  source.opacity = mtl.dissolve;
+  source.illum = mtl.illum;
+  source.diffuse_texture = mtl.diffuse_texname;
+  return source;
+}
+
+class ObjConverter {
+ public:
+  ObjConverter(const std::string& path, const tinyobj::ObjReader& reader, Scene& scene)
+      : path_(path), attrib_(reader.GetAttrib()), scene_(scene), builder_(scene.import_stats) {
+    const std::string directory = std::filesystem::path(path).parent_path().string();
+    TextureCache textures(scene);
+    for (const tinyobj::material_t& mtl : reader.GetMaterials()) {
+      SourceMaterial source = source_material(mtl);
+      Material material = map_material(source);
+      if (!source.diffuse_texture.empty())
+        material.diffuse_texture = textures.from_file((std::filesystem::path(directory) / source.diffuse_texture).string());
+      scene.materials.push_back(material);
+    }
+  }
+
+  void add_shape(const tinyobj::shape_t& shape) {
+    const tinyobj::mesh_t& mesh = shape.mesh;
+    size_t first_corner = 0;
+    std::vector<uint32_t> polygon;
+    std::vector<Vec3> corners;
+    for (size_t face = 0; face < mesh.num_face_vertices.size(); ++face) {
+      const size_t count = mesh.num_face_vertices[face];
+      if (first_corner + count > mesh.indices.size()) throw Error(path_, "a face has more corners than the file lists");
+      polygon.clear();
+      corners.clear();
+      for (size_t i = 0; i < count; ++i) {
+        polygon.push_back(vertex_for(mesh.indices[first_corner + i]));
+        corners.push_back(positions_[polygon.back()]);
+      }
+      first_corner += count;
+      if (count == 1) ++scene_.import_stats.ignored_points;
+      if (count == 2) ++scene_.import_stats.ignored_lines;
+      const uint32_t material = material_for(face < mesh.material_ids.size() ? mesh.material_ids[face] : -1);
+      for (const auto& triangle : triangulate_polygon(corners))
+        builder_.add_triangle(polygon[triangle[0]], polygon[triangle[1]], polygon[triangle[2]], material);
+    }
+    scene_.import_stats.ignored_lines += shape.lines.num_line_vertices.size();
+    scene_.import_stats.ignored_points += shape.points.indices.size();
+  }
+
+  void finish() { builder_.finish(scene_); }
+
+ private:
+  uint32_t vertex_for(const tinyobj::index_t& index) {
+    const CornerKey key{index.vertex_index, index.texcoord_index, index.normal_index};
+    auto found = vertex_of_.find(key);
+    if (found != vertex_of_.end()) return found->second;
+    const size_t vertex_count = attrib_.vertices.size() / 3;
+    if (index.vertex_index < 0 || size_t(index.vertex_index) >= vertex_count)
+      throw Error(path_, "a face refers to vertex " + std::to_string(index.vertex_index + 1) + " but the file has " +
+                             std::to_string(vertex_count));
+    const float* v = &attrib_.vertices[3 * size_t(index.vertex_index)];
+    std::optional<Vec3> normal;
+    if (index.normal_index >= 0 && size_t(index.normal_index) < attrib_.normals.size() / 3) {
+      const float* n = &attrib_.normals[3 * size_t(index.normal_index)];
+      normal = Vec3{n[0], n[1], n[2]};
+    }
+    std::optional<Vec2> uv;
+    if (index.texcoord_index >= 0 && size_t(index.texcoord_index) < attrib_.texcoords.size() / 2) {
+      const float* t = &attrib_.texcoords[2 * size_t(index.texcoord_index)];
+      uv = Vec2{t[0], t[1]};
+    }
+    const uint32_t vertex = builder_.add_vertex({v[0], v[1], v[2]}, normal, uv);
+    positions_.push_back({v[0], v[1], v[2]});
+    vertex_of_.emplace(key, vertex);
+    return vertex;
+  }
+
+  // Faces without a (known) material share one default diffuse material, added when first used.
+  uint32_t material_for(int material_id) {
+    if (material_id >= 0 && size_t(material_id) < scene_.materials.size()) return uint32_t(material_id);
+    if (default_material_ < 0) {
+      default_material_ = int64_t(scene_.materials.size());
+      Material fallback;
+      fallback.name = "default";
+      scene_.materials.push_back(fallback);
+    }
+    return uint32_t(default_material_);
+  }
+
+  std::string path_;
+  const tinyobj::attrib_t& attrib_;
+  Scene& scene_;
+  MeshBuilder builder_;
+  std::vector<Vec3> positions_;  // of builder vertices, for triangulation
+  std::unordered_map<CornerKey, uint32_t, CornerKeyHash> vertex_of_;
+  int64_t default_material_ = -1;
+};
+
+}  // namespace
+
+Scene import_with_tinyobj(const std::string& path) {
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, config)) {
+    std::string message = reader.Error();
+    while (!message.empty() && (message.back() == '\n' || message.back() == '\r')) message.pop_back();
+    throw Error(path, "tinyobjloader cannot read it: " + (message.empty() ? std::string("unknown error") : message));
+  }
+  Scene scene;
+  scene.import_stats.importer = "tinyobj";
+  const std::string& warnings = reader.Warning();
+  for (size_t start = 0, end; start < warnings.size(); start = end + 1) {
+    end = std::min(warnings.find('\n', start), warnings.size());
+    if (end > start) scene.import_stats.warnings.push_back("tinyobjloader: " + warnings.substr(start, end - start));
+  }
+  ObjConverter converter(path, reader, scene);
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) converter.add_shape(shape);
+  converter.finish();
+  return scene;
+}
+
+}  // namespace kdray

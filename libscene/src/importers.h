@@ -1,0 +1,32 @@
+// The two importers behind import_scene (import.cpp), and what they share. Each returns the
+// asset's geometry, materials, textures and cameras as found; import.cpp then applies the
+// user's options, lists emissive triangles and adds a default camera.
+#pragma once
+
+#include <kdray/scene.h>
+
+#include <map>
+#include <string>
+
+namespace kdray {
+
+Scene import_with_tinyobj(const std::string& path);
+Scene import_with_assimp(const std::string& path);
+
+// Decodes each distinct texture once and appends it to scene.textures; unreadable textures
+// become warnings in scene.import_stats and index -1.
+class TextureCache {
+ public:
+  explicit TextureCache(Scene& scene) : scene_(scene) {}
+  int32_t from_file(const std::string& path);
+  int32_t from_memory(const std::string& key, const void* data, size_t size, const std::string& format_hint);
+
+ private:
+  template <typename Decode>
+  int32_t cached(const std::string& key, Decode decode);
+
+  Scene& scene_;
+  std::map<std::string, int32_t> index_of_;
+};
+
+}  // namespace kdray

@@ -1,0 +1,62 @@
+#include <kdray/scene.h>
+
+#include "scene_encoding.h"
+
+#include <xxhash.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+namespace kdray {
+
+const char* material_type_name(MaterialType type) {
+  switch (type) {
+    case MaterialType::Diffuse: return "diffuse";
+    case MaterialType::Emissive: return "emissive";
+    case MaterialType::Mirror: return "mirror";
+    case MaterialType::RoughConductor: return "rough-conductor";
+    case MaterialType::Dielectric: return "dielectric";
+  }
+  return "unknown";
+}
+
+Bounds scene_bounds(const Scene& scene) {
+  if (scene.positions.empty()) return {};
+  Bounds bounds{scene.positions[0], scene.positions[0]};
+  for (const Vec3& p : scene.positions) {
+    bounds.min = {std::min(bounds.min.x, p.x), std::min(bounds.min.y, p.y), std::min(bounds.min.z, p.z)};
+    bounds.max = {std::max(bounds.max.x, p.x), std::max(bounds.max.y, p.y), std::max(bounds.max.z, p.z)};
+  }
+  return bounds;
+}
+
+// The hash covers, in this order, each part as (8-byte little-endian size, bytes): positions,
+// indices, material ids, normals, UVs, emissive triangles, then the encoded materials,
+// textures and cameras (formats/kdscene.md). Import statistics are not content.
+uint64_t encoding::content_hash(const Scene& scene, const EncodedParts& parts) {
+  std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(), &XXH3_freeState);
+  XXH3_64bits_reset(state.get());
+  auto feed = [&](const void* data, uint64_t size) {
+    XXH3_64bits_update(state.get(), &size, sizeof size);
+    XXH3_64bits_update(state.get(), data, size);
+  };
+  auto feed_array = [&](const auto& array) { feed(array.data(), array.size() * sizeof array[0]); };
+  auto feed_text = [&](const std::string& text) { feed(text.data(), text.size()); };
+  feed_array(scene.positions);
+  feed_array(scene.indices);
+  feed_array(scene.material_ids);
+  feed_array(scene.normals);
+  feed_array(scene.uvs);
+  feed_array(scene.emissive_triangles);
+  feed_text(parts.materials);
+  feed_text(parts.textures);
+  feed_text(parts.cameras);
+  return XXH3_64bits_digest(state.get());
+}
+
+uint64_t compute_content_hash(const Scene& scene) {
+  return encoding::content_hash(scene, encoding::encode_parts(scene));
+}
+
+}  // namespace kdray

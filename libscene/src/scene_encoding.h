@@ -1,0 +1,34 @@
+// The cereal portable-binary encoding of the structured .kdscene sections (materials,
+// cameras, textures, scene info), shared by the file writer and the content hash so both
+// see exactly the same bytes. The byte layout is specified in formats/kdscene.md.
+#pragma once
+
+#include <kdray/scene.h>
+
+#include <string>
+#include <vector>
+
+namespace kdray::encoding {
+
+// The three structured parts that are content (they enter the content hash).
+struct EncodedParts {
+  std::string materials, textures, cameras;
+};
+EncodedParts encode_parts(const Scene& scene);
+
+// The content hash of a scene whose structured parts are already encoded (scene.cpp).
+uint64_t content_hash(const Scene& scene, const EncodedParts& parts);
+
+std::string encode_materials(const std::vector<Material>& materials);
+std::string encode_cameras(const std::vector<Camera>& cameras);
+std::string encode_textures(const std::vector<Texture>& textures);
+std::string encode_import_stats(const ImportStats& stats);
+
+// Decoders throw kdray::Error naming `path` when the bytes are malformed. Every element
+// count is checked against the bytes that remain before anything is allocated.
+std::vector<Material> decode_materials(const std::string& path, const std::vector<char>& bytes);
+std::vector<Camera> decode_cameras(const std::string& path, const std::vector<char>& bytes);
+std::vector<Texture> decode_textures(const std::string& path, const std::vector<char>& bytes);
+ImportStats decode_import_stats(const std::string& path, const std::vector<char>& bytes);
+
+}  // namespace kdray::encoding

@@ -1,0 +1,174 @@
+#include <kdray/scene_file.h>
+
+#include <kdray/container_file.h>
+#include <kdray/error.h>
+
+#include "scene_encoding.h"
+
+#include <optional>
+
+namespace kdray {
+namespace {
+
+using namespace format;
+
+constexpr uint64_t kKnownFlags = kSceneHasNormals | kSceneHasUVs | kSceneHasTextures | kSceneHasEmissive;
+
+// Whether each array is consistent with the mesh it belongs to; false means the scene in
+// memory (on write) or the file (on read) cannot be trusted.
+std::string first_inconsistency(const Scene& scene) {
+  const uint64_t vertices = scene.positions.size();
+  const uint64_t triangles = scene.indices.size() / 3;
+  if (scene.indices.size() % 3 != 0) return "the index count is not a multiple of 3";
+  if (scene.material_ids.size() != triangles)
+    return std::to_string(scene.material_ids.size()) + " material ids for " + std::to_string(triangles) + " triangles";
+  if (!scene.normals.empty() && scene.normals.size() != vertices)
+    return std::to_string(scene.normals.size()) + " normals for " + std::to_string(vertices) + " vertices";
+  if (!scene.uvs.empty() && scene.uvs.size() != vertices)
+    return std::to_string(scene.uvs.size()) + " UVs for " + std::to_string(vertices) + " vertices";
+  for (uint64_t i = 0; i < scene.indices.size(); ++i)
+    if (scene.indices[i] >= vertices)
+      return "triangle " + std::to_string(i / 3) + " refers to vertex " + std::to_string(scene.indices[i]) + " of " +
+             std::to_string(vertices);
+  for (uint64_t t = 0; t < triangles; ++t)
+    if (scene.material_ids[t] >= scene.materials.size())
+      return "triangle " + std::to_string(t) + " has material " + std::to_string(scene.material_ids[t]) + " of " +
+             std::to_string(scene.materials.size());
+  for (uint32_t triangle : scene.emissive_triangles)
+    if (triangle >= triangles) return "emissive triangle " + std::to_string(triangle) + " does not exist";
+  for (const Material& material : scene.materials)
+    if (material.diffuse_texture < -1 || material.diffuse_texture >= int64_t(scene.textures.size()))
+      return "material '" + material.name + "' refers to texture " + std::to_string(material.diffuse_texture) + " of " +
+             std::to_string(scene.textures.size());
+  for (const Texture& texture : scene.textures)
+    if (texture.rgba.size() != uint64_t(texture.width) * texture.height * 4)
+      return "texture '" + texture.name + "' has the wrong pixel count";
+  return {};
+}
+
+uint64_t flags_of(const Scene& scene) {
+  uint64_t flags = 0;
+  if (!scene.normals.empty()) flags |= kSceneHasNormals;
+  if (!scene.uvs.empty()) flags |= kSceneHasUVs;
+  if (!scene.textures.empty()) flags |= kSceneHasTextures;
+  if (!scene.emissive_triangles.empty()) flags |= kSceneHasEmissive;
+  return flags;
+}
+
+template <typename T>
+SectionData array_section(uint32_t id, const std::vector<T>& array) {
+  return {id, array.data(), array.size() * sizeof(T)};
+}
+
+SectionData text_section(uint32_t id, const std::string& bytes) { return {id, bytes.data(), bytes.size()}; }
+
+// Collects sections as the container reader streams them, sizing each destination from the
+// section size (already checked against the file size by the container reader).
+class SectionCollector {
+ public:
+  SectionCollector(const std::string& path, Scene& scene) : path_(path), scene_(scene) {}
+
+  void* destination(uint32_t id, uint64_t size) {
+    if (id >= seen_.size()) return nullptr;  // a section a newer writer added: not ours to read
+    if (seen_[id]) throw Error(path_, "section " + std::to_string(id) + " appears twice");
+    seen_[id] = true;
+    switch (id) {
+      case kScenePositions: return sized(scene_.positions, size, "positions");
+      case kSceneIndices: return sized_bytes(scene_.indices, size, 12, "indices");
+      case kSceneMaterialIds: return sized(scene_.material_ids, size, "material ids");
+      case kSceneNormals: return sized(scene_.normals, size, "normals");
+      case kSceneUVs: return sized(scene_.uvs, size, "UVs");
+      case kSceneEmissive: return sized(scene_.emissive_triangles, size, "emissive triangles");
+      case kSceneMaterials: return sized(materials, size, "materials");
+      case kSceneCameras: return sized(cameras, size, "cameras");
+      case kSceneTextures: return sized(textures, size, "textures");
+      case kSceneInfo: return sized(info, size, "scene info");
+      default: return nullptr;
+    }
+  }
+
+  bool has(uint32_t id) const { return seen_[id]; }
+
+  std::vector<char> materials, cameras, textures, info;
+
+ private:
+  template <typename T>
+  void* sized(std::vector<T>& array, uint64_t size, const char* what) {
+    return sized_bytes(array, size, sizeof(T), what);
+  }
+
+  template <typename T>
+  void* sized_bytes(std::vector<T>& array, uint64_t size, uint64_t unit, const char* what) {
+    if (size % unit != 0)
+      throw Error(path_, std::string(what) + " section size " + std::to_string(size) + " is not a multiple of " +
+                             std::to_string(unit));
+    array.resize(size / sizeof(T));
+    return array.data();
+  }
+
+  std::string path_;
+  Scene& scene_;
+  std::vector<bool> seen_ = std::vector<bool>(kSceneInfo + 1, false);
+};
+
+}  // namespace
+
+void write_scene(const std::string& path, const Scene& scene) {
+  const std::string problem = first_inconsistency(scene);
+  if (!problem.empty()) throw Error(path, "refusing to write an inconsistent scene: " + problem);
+  const encoding::EncodedParts parts = encoding::encode_parts(scene);
+  const std::string info = encoding::encode_import_stats(scene.import_stats);
+
+  std::vector<SectionData> sections = {
+      array_section(kScenePositions, scene.positions),
+      array_section(kSceneIndices, scene.indices),
+      array_section(kSceneMaterialIds, scene.material_ids),
+  };
+  if (!scene.normals.empty()) sections.push_back(array_section(kSceneNormals, scene.normals));
+  if (!scene.uvs.empty()) sections.push_back(array_section(kSceneUVs, scene.uvs));
+  sections.push_back(text_section(kSceneMaterials, parts.materials));
+  sections.push_back(text_section(kSceneCameras, parts.cameras));
+  if (!scene.textures.empty()) sections.push_back(text_section(kSceneTextures, parts.textures));
+  if (!scene.emissive_triangles.empty()) sections.push_back(array_section(kSceneEmissive, scene.emissive_triangles));
+  sections.push_back(text_section(kSceneInfo, info));
+
+  ContainerHeaderInfo header{kSceneMagic, kSceneVersion, flags_of(scene), encoding::content_hash(scene, parts)};
+  write_container(path, header, sections);
+}
+
+Scene read_scene(const std::string& path) {
+  Scene scene;
+  SectionCollector collector(path, scene);
+  const ContainerContents contents = read_container(
+      path, kSceneMagic, kSceneVersion, "kdscene",
+      [&](uint32_t id, uint64_t size) { return collector.destination(id, size); });
+
+  for (uint32_t required : {kScenePositions, kSceneIndices, kSceneMaterialIds, kSceneMaterials, kSceneCameras, kSceneInfo})
+    if (!collector.has(required)) throw Error(path, "required section " + std::to_string(required) + " is missing");
+  const uint64_t flags = contents.header.flags;
+  if (flags & ~kKnownFlags) throw Error(path, "unknown flag bits in the header");
+  const std::pair<uint64_t, uint32_t> optional_sections[] = {
+      {kSceneHasNormals, kSceneNormals}, {kSceneHasUVs, kSceneUVs},
+      {kSceneHasTextures, kSceneTextures}, {kSceneHasEmissive, kSceneEmissive}};
+  for (const auto& [flag, section] : optional_sections)
+    if (bool(flags & flag) != collector.has(section))
+      throw Error(path, "header flags disagree with the sections present (section " + std::to_string(section) + ")");
+
+  scene.materials = encoding::decode_materials(path, collector.materials);
+  scene.cameras = encoding::decode_cameras(path, collector.cameras);
+  if (collector.has(kSceneTextures)) scene.textures = encoding::decode_textures(path, collector.textures);
+  scene.import_stats = encoding::decode_import_stats(path, collector.info);
+
+  const std::string problem = first_inconsistency(scene);
+  if (!problem.empty()) throw Error(path, "inconsistent scene: " + problem);
+  scene.content_hash = contents.header.content_hash;
+  return scene;
+}
+
+SceneFileSummary peek_scene(const std::string& path) {
+  const ContainerContents contents = peek_container(path, kSceneMagic, kSceneVersion, "kdscene");
+  return {contents.header.version, contents.header.flags, contents.header.content_hash,
+          contents.header.payload_size + sizeof(FileHeader)};
+}
+
+}  // namespace kdray

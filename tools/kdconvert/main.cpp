@@ -1,0 +1,108 @@
+// kdconvert: an asset (OBJ, PLY, glTF, FBX, ...) becomes a checked .kdscene file.
+#include <kdray/container_file.h>
+#include <kdray/import.h>
+#include <kdray/scene_file.h>
+
+#include <tool_main.h>
+
+#include <chrono>
+#include <cstdio>
+
+namespace {
+
+using kdray::ImportStats;
+using kdray::Scene;
+
+nlohmann::json summary_json(const Scene& scene, const std::string& output, double seconds) {
+  const ImportStats& stats = scene.import_stats;
+  const kdray::Bounds bounds = kdray::scene_bounds(scene);
+  return {
+      {"output", output},
+      {"source", stats.source_file},
+      {"importer", stats.importer},
+      {"triangles", scene.triangle_count()},
+      {"vertices", scene.positions.size()},
+      {"source_triangles", stats.source_triangles},
+      {"dropped_degenerate", stats.dropped_degenerate},
+      {"dropped_non_finite", stats.dropped_non_finite},
+      {"ignored_points", stats.ignored_points},
+      {"ignored_lines", stats.ignored_lines},
+      {"has_normals", !scene.normals.empty()},
+      {"has_uvs", !scene.uvs.empty()},
+      {"materials", scene.materials.size()},
+      {"textures", scene.textures.size()},
+      {"cameras", scene.cameras.size()},
+      {"emissive_triangles", scene.emissive_triangles.size()},
+      {"bounds", {{"min", {bounds.min.x, bounds.min.y, bounds.min.z}}, {"max", {bounds.max.x, bounds.max.y, bounds.max.z}}}},
+      {"content_hash", kdray::hash_hex(scene.content_hash)},
+      {"warnings", stats.warnings},
+      {"seconds", seconds},
+  };
+}
+
+void print_summary(const Scene& scene, const std::string& output, double seconds) {
+  const ImportStats& stats = scene.import_stats;
+  std::printf("%s -> %s (%s, %.3f s)\n", stats.source_file.c_str(), output.c_str(), stats.importer.c_str(), seconds);
+  std::printf("  triangles  %zu kept of %llu", scene.triangle_count(), (unsigned long long)stats.source_triangles);
+  if (stats.dropped_degenerate + stats.dropped_non_finite > 0)
+    std::printf(" (dropped %llu degenerate, %llu non-finite)", (unsigned long long)stats.dropped_degenerate,
+                (unsigned long long)stats.dropped_non_finite);
+  std::printf("\n  vertices   %zu%s%s\n", scene.positions.size(), scene.normals.empty() ? "" : ", normals",
+              scene.uvs.empty() ? "" : ", UVs");
+  if (stats.ignored_points + stats.ignored_lines > 0)
+    std::printf("  ignored    %llu points, %llu lines\n", (unsigned long long)stats.ignored_points,
+                (unsigned long long)stats.ignored_lines);
+  std::printf("  materials  %zu, textures %zu, emissive triangles %zu, cameras %zu (first: %s)\n",
+              scene.materials.size(), scene.textures.size(), scene.emissive_triangles.size(), scene.cameras.size(),
+              scene.cameras.front().name.c_str());
+  std::printf("  hash       %s\n", kdray::hash_hex(scene.content_hash).c_str());
+  for (const std::string& warning : stats.warnings) std::printf("  warning: %s\n", warning.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Converts a mesh asset into a .kdscene file.\n"
+               "OBJ goes through tinyobjloader, every other format through Assimp."};
+  app.name("kdconvert");
+  app.set_version_flag("--version", std::string("kdconvert ") + KDRAY_VERSION);
+  std::string input, output;
+  kdray::ImportOptions options;
+  bool json = false, quiet = false;
+  app.add_option("INPUT", input, "Asset to convert (OBJ, PLY, glTF, FBX, DAE, 3DS, STL, ...)")->required();
+  app.add_option("OUTPUT", output, "The .kdscene file to write (written atomically)")->required();
+  std::string importer = "auto", up_axis = "y";
+  app.add_option("--importer", importer, "auto: tinyobj for .obj, Assimp otherwise")
+      ->group("Import")
+      ->check(CLI::IsMember({"auto", "assimp", "tinyobj"}))
+      ->capture_default_str();
+  app.add_option("--scale", options.scale, "Multiply every coordinate by this factor")
+      ->group("Import")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--up-axis", up_axis, "The asset's up axis; z rotates it to kdray's +Y up")
+      ->group("Import")
+      ->check(CLI::IsMember({"y", "z"}))
+      ->capture_default_str();
+  app.add_option("--camera", options.camera, "Asset camera (name or index) to make the scene's first camera")
+      ->group("Import")
+      ->default_str("the asset's first, else one framing the bounding box");
+  app.add_flag("--json", json, "Print the summary as JSON on stdout")->group("Output");
+  app.add_flag("--quiet", quiet, "Print nothing on success")->group("Output");
+
+  return kdray::tool::run(app, argc, argv, [&] {
+    const auto start = std::chrono::steady_clock::now();
+    options.importer = importer == "assimp"    ? kdray::Importer::Assimp
+                       : importer == "tinyobj" ? kdray::Importer::TinyObj
+                                               : kdray::Importer::Auto;
+    options.up_axis = up_axis == "z" ? kdray::UpAxis::Z : kdray::UpAxis::Y;
+    const Scene scene = kdray::import_scene(input, options);
+    kdray::write_scene(output, scene);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (json)
+      kdray::tool::print_json(summary_json(scene, output, seconds));
+    else if (!quiet)
+      print_summary(scene, output, seconds);
+    return kdray::tool::kExitOk;
+  });
+}

@@ -116,12 +116,25 @@ TEST_F(ImageCompare, AlphaIsLeftOutUnlessAskedFor) {
   EXPECT_DOUBLE_EQ(kdray::compare_images(test, reference, with_alpha).overall.rmse, 1.0);
 }
 
-TEST_F(ImageCompare, ComparesOnlyChannelsBothImagesHave) {
+TEST_F(ImageCompare, ComparesTheRadianceWhenBothHaveRgb) {
+  // Like a kdrender EXR with a depth AOV: the extra layer is not the picture.
   const auto test = round_trip("t.exr", 1, 1, {"R", "G", "B", "Z"}, {0.5f, 0.5f, 0.5f, 100.0f});
-  const auto reference = round_trip("r.exr", 1, 1, {"R", "G", "B"}, {0.5f, 0.5f, 0.5f});
+  const auto reference = round_trip("r.exr", 1, 1, {"R", "G", "B", "Z"}, {0.5f, 0.5f, 0.5f, 7.0f});
   const kdray::CompareResult result = kdray::compare_images(test, reference);
-  EXPECT_EQ(result.channel_names.size(), 3u);
+  EXPECT_EQ(result.channel_names, (std::vector<std::string>{"R", "G", "B"}));
   EXPECT_EQ(result.overall.max_abs, 0.0);
+
+  kdray::CompareOptions depth;
+  depth.channels = {"Z"};
+  EXPECT_DOUBLE_EQ(kdray::compare_images(test, reference, depth).overall.max_abs, 93.0);
+}
+
+TEST_F(ImageCompare, WithoutRgbComparesTheChannelsBothHave) {
+  const auto test = round_trip("t.exr", 1, 1, {"Y", "Z"}, {0.5f, 100.0f});
+  const auto reference = round_trip("r.exr", 1, 1, {"Y"}, {0.25f});
+  const kdray::CompareResult result = kdray::compare_images(test, reference);
+  EXPECT_EQ(result.channel_names, (std::vector<std::string>{"Y"}));
+  EXPECT_DOUBLE_EQ(result.overall.max_abs, 0.25);
 
   kdray::CompareOptions depth;
   depth.channels = {"Z"};

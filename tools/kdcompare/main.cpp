@@ -125,7 +125,7 @@ int main(int argc, char** argv) {
   app.add_option("TEST", test_path, "The image to judge")->required();
   app.add_option("REFERENCE", reference_path, "The reference image, same size")->required();
   app.add_option("--channels", compare_options.channels,
-                 "Channels to compare, by name (default: all both images have, alpha left out)")
+                 "Channels to compare, by name (default: R,G,B when both have them, else all both have but alpha)")
       ->delimiter(',')
       ->group("Comparison");
   app.add_option("--peak", compare_options.peak, "PSNR peak (default 0: largest reference value, at least 1)")

@@ -48,8 +48,9 @@ struct ErrorMetrics {
 };
 
 struct CompareOptions {
-  // Channels to compare, by name. Empty: every channel both images have, except alpha
-  // unless alpha is all they share.
+  // Channels to compare, by name. Empty: R, G and B when both images have them (a kdrender
+  // EXR's AOV layers and exact sums are left out), else every channel both images have,
+  // except alpha unless alpha is all they share.
   std::vector<std::string> channels;
   // PSNR peak. 0: the largest finite reference value over the compared channels, but at
   // least 1 (so 0..1 images use the classic peak 1 and HDR images their own brightest value).

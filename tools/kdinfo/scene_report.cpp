@@ -1,0 +1,193 @@
+// kdinfo's description of a .kdscene file.
+#include "file_report.h"
+
+#include <kdray/container_file.h>
+#include <kdray/error.h>
+#include <kdray/scene_file.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <map>
+#include <optional>
+
+namespace kdinfo {
+namespace {
+
+using kdray::Scene;
+using nlohmann::json;
+
+std::string format(const char* pattern, ...) __attribute__((format(printf, 1, 2)));
+std::string format(const char* pattern, ...) {
+  char buffer[1024];
+  va_list arguments;
+  va_start(arguments, pattern);
+  std::vsnprintf(buffer, sizeof buffer, pattern, arguments);
+  va_end(arguments);
+  return buffer;
+}
+
+json vec3_json(const kdray::Vec3& v) { return {v.x, v.y, v.z}; }
+
+std::vector<std::string> optional_sections(uint64_t flags) {
+  std::vector<std::string> names;
+  if (flags & kdray::format::kSceneHasNormals) names.push_back("normals");
+  if (flags & kdray::format::kSceneHasUVs) names.push_back("uvs");
+  if (flags & kdray::format::kSceneHasTextures) names.push_back("textures");
+  if (flags & kdray::format::kSceneHasEmissive) names.push_back("emissive");
+  return names;
+}
+
+double triangle_area(const Scene& scene, uint32_t triangle) {
+  const kdray::Vec3& a = scene.positions[scene.indices[3 * triangle]];
+  const kdray::Vec3& b = scene.positions[scene.indices[3 * triangle + 1]];
+  const kdray::Vec3& c = scene.positions[scene.indices[3 * triangle + 2]];
+  const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
+  const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+  return 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
+}
+
+// Per emissive material: its triangles and their total area (the lights the renderer samples).
+json lights_json(const Scene& scene) {
+  std::map<uint32_t, std::pair<uint64_t, double>> per_material;
+  for (uint32_t triangle : scene.emissive_triangles) {
+    auto& [count, area] = per_material[scene.material_ids[triangle]];
+    ++count;
+    area += triangle_area(scene, triangle);
+  }
+  json lights = json::array();
+  for (const auto& [material, totals] : per_material)
+    lights.push_back({{"material", scene.materials[material].name},
+                      {"emission", vec3_json(scene.materials[material].emission)},
+                      {"triangles", totals.first},
+                      {"area", totals.second}});
+  return lights;
+}
+
+json scene_json(const Scene& scene) {
+  const kdray::Bounds bounds = kdray::scene_bounds(scene);
+  const kdray::ImportStats& stats = scene.import_stats;
+  json materials = json::array();
+  for (const kdray::Material& m : scene.materials)
+    materials.push_back({{"name", m.name},
+                         {"type", kdray::material_type_name(m.type)},
+                         {"base_color", vec3_json(m.base_color)},
+                         {"emission", vec3_json(m.emission)},
+                         {"roughness", m.roughness},
+                         {"ior", m.ior},
+                         {"diffuse_texture", m.diffuse_texture}});
+  json textures = json::array();
+  for (const kdray::Texture& t : scene.textures)
+    textures.push_back({{"name", t.name}, {"width", t.width}, {"height", t.height}});
+  json cameras = json::array();
+  for (const kdray::Camera& c : scene.cameras)
+    cameras.push_back({{"name", c.name},
+                       {"position", vec3_json(c.position)},
+                       {"target", vec3_json(c.target)},
+                       {"up", vec3_json(c.up)},
+                       {"vertical_fov_degrees", c.vertical_fov_degrees}});
+  return {
+      {"triangles", scene.triangle_count()},
+      {"vertices", scene.positions.size()},
+      {"bounds", {{"min", vec3_json(bounds.min)}, {"max", vec3_json(bounds.max)}}},
+      {"materials", materials},
+      {"textures", textures},
+      {"cameras", cameras},
+      {"emissive_triangles", scene.emissive_triangles.size()},
+      {"lights", lights_json(scene)},
+      {"import",
+       {{"source_file", stats.source_file},
+        {"importer", stats.importer},
+        {"source_triangles", stats.source_triangles},
+        {"dropped_degenerate", stats.dropped_degenerate},
+        {"dropped_non_finite", stats.dropped_non_finite},
+        {"ignored_points", stats.ignored_points},
+        {"ignored_lines", stats.ignored_lines},
+        {"warnings", stats.warnings}}},
+  };
+}
+
+std::string scene_text(const json& j) {
+  std::string text;
+  const json& bounds = j["bounds"];
+  text += format("triangles  %llu\nvertices   %llu\n", j["triangles"].get<unsigned long long>(),
+                 j["vertices"].get<unsigned long long>());
+  text += format("bounds     (%g, %g, %g) .. (%g, %g, %g)\n", bounds["min"][0].get<double>(),
+                 bounds["min"][1].get<double>(), bounds["min"][2].get<double>(), bounds["max"][0].get<double>(),
+                 bounds["max"][1].get<double>(), bounds["max"][2].get<double>());
+  text += format("materials  %zu\n", j["materials"].size());
+  for (const json& m : j["materials"]) {
+    text += format("  %-24s %-15s colour (%.3g, %.3g, %.3g)", m["name"].get<std::string>().c_str(),
+                   m["type"].get<std::string>().c_str(), m["base_color"][0].get<double>(),
+                   m["base_color"][1].get<double>(), m["base_color"][2].get<double>());
+    if (m["type"] == "emissive")
+      text += format(" emission (%g, %g, %g)", m["emission"][0].get<double>(), m["emission"][1].get<double>(),
+                     m["emission"][2].get<double>());
+    if (m["type"] == "rough-conductor") text += format(" roughness %.3g", m["roughness"].get<double>());
+    if (m["type"] == "dielectric") text += format(" ior %.3g", m["ior"].get<double>());
+    if (m["diffuse_texture"].get<int>() >= 0) text += format(" texture %d", m["diffuse_texture"].get<int>());
+    text += "\n";
+  }
+  text += format("textures   %zu\n", j["textures"].size());
+  for (const json& t : j["textures"])
+    text += format("  %s (%ux%u)\n", t["name"].get<std::string>().c_str(), t["width"].get<unsigned>(),
+                   t["height"].get<unsigned>());
+  text += format("lights     %llu emissive triangles\n", j["emissive_triangles"].get<unsigned long long>());
+  for (const json& l : j["lights"])
+    text += format("  %s: %llu triangles, area %g, emission (%g, %g, %g)\n", l["material"].get<std::string>().c_str(),
+                   l["triangles"].get<unsigned long long>(), l["area"].get<double>(), l["emission"][0].get<double>(),
+                   l["emission"][1].get<double>(), l["emission"][2].get<double>());
+  text += format("cameras    %zu\n", j["cameras"].size());
+  for (const json& c : j["cameras"])
+    text += format("  %s at (%g, %g, %g) looking at (%g, %g, %g), vertical fov %g deg\n",
+                   c["name"].get<std::string>().c_str(), c["position"][0].get<double>(), c["position"][1].get<double>(),
+                   c["position"][2].get<double>(), c["target"][0].get<double>(), c["target"][1].get<double>(),
+                   c["target"][2].get<double>(), c["vertical_fov_degrees"].get<double>());
+  const json& import = j["import"];
+  text += format("source     %s via %s: %llu triangles, dropped %llu degenerate and %llu non-finite, ignored %llu "
+                 "points and %llu lines\n",
+                 import["source_file"].get<std::string>().c_str(), import["importer"].get<std::string>().c_str(),
+                 import["source_triangles"].get<unsigned long long>(),
+                 import["dropped_degenerate"].get<unsigned long long>(),
+                 import["dropped_non_finite"].get<unsigned long long>(),
+                 import["ignored_points"].get<unsigned long long>(), import["ignored_lines"].get<unsigned long long>());
+  for (const json& warning : import["warnings"]) text += "  warning: " + warning.get<std::string>() + "\n";
+  return text;
+}
+
+}  // namespace
+
+FileReport describe_scene_file(const std::string& path) {
+  const kdray::SceneFileSummary summary = kdray::peek_scene(path);
+  FileReport report;
+  report.json = {{"file", path},
+                 {"kind", "kdscene"},
+                 {"format_version", summary.version},
+                 {"file_size", summary.file_size},
+                 {"content_hash", kdray::hash_hex(summary.content_hash)},
+                 {"optional_sections", optional_sections(summary.flags)}};
+  std::string optional;
+  for (const std::string& name : optional_sections(summary.flags)) optional += (optional.empty() ? "" : ", ") + name;
+  report.text = format("%s: kdscene version %u, %llu bytes\nhash       %s\noptional   %s\n", path.c_str(),
+                       summary.version, (unsigned long long)summary.file_size,
+                       kdray::hash_hex(summary.content_hash).c_str(), optional.empty() ? "none" : optional.c_str());
+  try {
+    const auto start = std::chrono::steady_clock::now();
+    const Scene scene = kdray::read_scene(path);
+    const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const json details = scene_json(scene);
+    report.json.update(details);
+    report.json["load_seconds"] = load_seconds;
+    report.json["intact"] = true;
+    report.text += scene_text(details) + format("intact     yes (checksum verified, loaded in %.3f s)\n", load_seconds);
+    report.intact = true;
+  } catch (const kdray::Error& error) {
+    report.json["intact"] = false;
+    report.json["problem"] = error.what();
+    report.text += std::string("intact     NO: ") + error.what() + "\n";
+  }
+  return report;
+}
+
+}  // namespace kdinfo

@@ -1,0 +1,29 @@
+/* Closest hits for a buffer of rays (kdtrace --device opencl, and the kernel-vs-CPU test).
+ * Persistent threads: each work-item fetches its own batch of rays from a global atomic counter
+ * until none are left (GUIDE section 4). */
+#include "kd_traverse.h"
+
+#define KD_TRACE_BATCH 32u
+
+__kernel void kd_trace_closest(__global const KdNode* nodes, __global const kd_u32* leaf_triangles,
+                               __global const kd_u32* indices, __global const float* positions,
+                               float4 bounds_min, float4 bounds_max, __global const RayRecord* rays,
+                               uint ray_count, __global HitRecord* hits, __global uint* next_ray) {
+  KdSceneView scene;
+  scene.nodes = nodes;
+  scene.leaf_triangles = leaf_triangles;
+  scene.indices = indices;
+  scene.positions = positions;
+  scene.bounds_min[0] = bounds_min.x;
+  scene.bounds_min[1] = bounds_min.y;
+  scene.bounds_min[2] = bounds_min.z;
+  scene.bounds_max[0] = bounds_max.x;
+  scene.bounds_max[1] = bounds_max.y;
+  scene.bounds_max[2] = bounds_max.z;
+  for (;;) {
+    uint first = atomic_add(next_ray, KD_TRACE_BATCH);
+    if (first >= ray_count) break;
+    uint end = min(first + KD_TRACE_BATCH, ray_count);
+    for (uint i = first; i < end; ++i) hits[i] = kd_intersect_closest(&scene, rays[i]);
+  }
+}

@@ -1,0 +1,36 @@
+/* Megakernel path tracer with persistent threads: about as many work-items as the device runs
+ * at once; each takes the next pixel from a global atomic counter (GUIDE section 4: every
+ * work-item fetches its own work, no lockstep assumption) and renders samples
+ * sample_offset..sample_offset+sample_count-1 of it. Each pixel belongs to one work-item per
+ * launch, so its film sums are updated without atomics. */
+#include "pt_kernel_args.h"
+
+__kernel void pt_render(PT_SCENE_ARGS, __global long* film, __global uint* next_pixel, __global ulong* stats) {
+  PtSceneData scene = PT_MAKE_SCENE();
+  uint pixel_count = params->width * params->height;
+  uint channels = params->film_channels;
+  ulong rays = 0;
+  uint nonfinite = 0;
+  for (;;) {
+    uint pixel = atomic_inc(next_pixel);
+    if (pixel >= pixel_count) break;
+    long sums[PT_MAX_FILM_CHANNELS];
+    for (uint c = 0; c < PT_MAX_FILM_CHANNELS; ++c) sums[c] = 0;
+    for (uint i = 0; i < params->sample_count; ++i) {
+      PtPath path;
+      pt_path_begin(&path, params, pixel, params->sample_offset + i);
+      while (path.alive) {
+        HitRecord hit = kd_intersect_closest(&scene.kd, pt_path_ray(&path));
+        ++rays;
+        pt_path_shade(&path, &scene, params, hit);
+        if (path.shadow_pending) {
+          ++rays;
+          pt_path_resolve_shadow(&path, kd_intersect_any(&scene.kd, pt_shadow_ray(&path)));
+        }
+      }
+      pt_path_accumulate(&path, params, sums, &nonfinite);
+    }
+    for (uint c = 0; c < channels; ++c) film[(size_t)pixel * channels + c] += sums[c];
+  }
+  pt_add_stats(stats, rays, nonfinite);
+}

@@ -1,0 +1,267 @@
+/* One path's state and the steps that advance it: begin at the camera, shade a closest hit
+ * (emission with MIS, Russian roulette, next-event estimation, BSDF sampling), resolve the
+ * shadow ray, add the finished sample to the film. The megakernel runs these steps in a loop
+ * per work-item; the wavefront form runs each step as its own kernel over a buffer of paths.
+ * OpenCL C only. */
+#ifndef PT_PATH_H
+#define PT_PATH_H
+
+#include "kd_traverse.h"
+#include "pt_bsdf.h"
+#include "pt_rng.h"
+#include "pt_types.h"
+
+#define PT_ROULETTE_START 3u
+
+typedef struct PtSceneData {
+  KdSceneView kd;
+  __global const kd_u32* material_ids;
+  __global const PtMaterial* materials;
+  __global const float* normals;  /* KD_FEATURE_NORMALS */
+  __global const float* uvs;      /* KD_FEATURE_TEXTURES */
+  __global const PtTexture* textures;
+  __global const float4* texels;
+  __global const PtLight* lights;
+} PtSceneData;
+
+typedef struct PtPath {
+  float4 origin, direction;
+  float4 throughput, radiance;
+  float4 shadow_origin, shadow_span; /* shadow ray: origin + t * span, 0 < t < 1 */
+  float4 shadow_contribution;
+  float4 albedo, normal;             /* first-hit AOVs */
+  float depth;
+  float bsdf_pdf;                    /* pdf of the last BSDF sample, 0 after a delta lobe */
+  kd_u32 pixel, sample, bounce;
+  kd_i32 alive, shadow_pending, pad;
+} PtPath;
+typedef char pt_path_size_check[sizeof(PtPath) == 176 ? 1 : -1];
+#define PT_PATH_BYTES 176
+
+inline RayRecord pt_ray(float3 origin, float3 direction, float tmax) {
+  RayRecord ray;
+  ray.ox = origin.x;
+  ray.oy = origin.y;
+  ray.oz = origin.z;
+  ray.dx = direction.x;
+  ray.dy = direction.y;
+  ray.dz = direction.z;
+  ray.tmin = 0.0f;
+  ray.tmax = tmax;
+  return ray;
+}
+inline RayRecord pt_path_ray(const PtPath* path) { return pt_ray(path->origin.xyz, path->direction.xyz, INFINITY); }
+inline RayRecord pt_shadow_ray(const PtPath* path) { return pt_ray(path->shadow_origin.xyz, path->shadow_span.xyz, 1.0f); }
+
+inline void pt_path_begin(PtPath* path, __global const PtRenderParams* params, uint pixel, uint sample) {
+  uint x = pixel % params->width, y = pixel / params->width;
+  float jx = pt_random(params->seed, pixel, sample, 0, PT_DIM_CAMERA_X);
+  float jy = pt_random(params->seed, pixel, sample, 0, PT_DIM_CAMERA_Y);
+  float sx = 2.0f * ((float)x + jx) / (float)params->width - 1.0f;
+  float sy = 1.0f - 2.0f * ((float)y + jy) / (float)params->height;
+  float3 forward = vload3(0, params->cam_forward), right = vload3(0, params->cam_right);
+  float3 up = vload3(0, params->cam_up);
+  path->origin = (float4)(vload3(0, params->cam_origin), 0.0f);
+  path->direction = (float4)(normalize(forward + sx * right + sy * up), 0.0f);
+  path->throughput = (float4)(1.0f);
+  path->radiance = (float4)(0.0f);
+  path->albedo = (float4)(0.0f);
+  path->normal = (float4)(0.0f);
+  path->depth = 0.0f;
+  path->bsdf_pdf = 0.0f;
+  path->pixel = pixel;
+  path->sample = sample;
+  path->bounce = 0;
+  path->alive = 1;
+  path->shadow_pending = 0;
+}
+
+#ifdef KD_FEATURE_TEXTURES
+inline float3 pt_texel(__global const float4* texels, PtTexture tex, int x, int y) {
+  x = x % (int)tex.width;
+  y = y % (int)tex.height;
+  x += x < 0 ? (int)tex.width : 0;
+  y += y < 0 ? (int)tex.height : 0;
+  return texels[tex.first_texel + (uint)y * tex.width + (uint)x].xyz;
+}
+/* Bilinear lookup with wrapping; v = 0 is the bottom row (OBJ convention). */
+inline float3 pt_texture_lookup(const PtSceneData* scene, int index, float2 uv) {
+  PtTexture tex = scene->textures[index];
+  float fx = uv.x * (float)tex.width - 0.5f;
+  float fy = (1.0f - uv.y) * (float)tex.height - 0.5f;
+  float x0 = floor(fx), y0 = floor(fy);
+  float ax = fx - x0, ay = fy - y0;
+  int ix = (int)x0, iy = (int)y0;
+  float3 top = mix(pt_texel(scene->texels, tex, ix, iy), pt_texel(scene->texels, tex, ix + 1, iy), ax);
+  float3 bottom = mix(pt_texel(scene->texels, tex, ix, iy + 1), pt_texel(scene->texels, tex, ix + 1, iy + 1), ax);
+  return mix(top, bottom, ay);
+}
+#endif
+
+/* Picks an emitter by its share of the emitted power: the first entry whose cdf exceeds u. */
+inline uint pt_pick_light(__global const PtLight* lights, uint count, float u) {
+  uint lo = 0, hi = count - 1;
+  while (lo < hi) {
+    uint mid = (lo + hi) / 2;
+    if (u < lights[mid].cdf) hi = mid; else lo = mid + 1;
+  }
+  return lights[lo].triangle;
+}
+
+inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const PtRenderParams* params,
+                          const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng, float3 wo) {
+  uint k = path->bounce;
+  float u_pick = pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_LIGHT_PICK);
+  uint tri = pt_pick_light(scene->lights, params->light_count, u_pick);
+  __global const kd_u32* idx = scene->kd.indices + 3 * tri;
+  float3 q0 = pt_load3(scene->kd.positions, idx[0]);
+  float3 q1 = pt_load3(scene->kd.positions, idx[1]);
+  float3 q2 = pt_load3(scene->kd.positions, idx[2]);
+  float2 b = pt_sample_triangle(pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_LIGHT_U),
+                                pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_LIGHT_V));
+  float3 y = q0 + b.x * (q1 - q0) + b.y * (q2 - q0);
+  float3 light_normal = normalize(cross(q1 - q0, q2 - q0));
+  float3 to_light = y - p;
+  float dist2 = dot(to_light, to_light);
+  if (!(dist2 > 0.0f)) return;
+  float3 wi = to_light * rsqrt(dist2);
+  float cos_light = -dot(light_normal, wi);
+  if (cos_light <= 0.0f) return; /* emitters are one-sided */
+  float bsdf_pdf;
+  float3 f_cos = pt_bsdf_eval(m, color, n, wo, wi, &bsdf_pdf);
+  if (bsdf_pdf <= 0.0f || dot(wi, ng) <= 0.0f) return;
+  PtMaterial light = scene->materials[scene->material_ids[tri]];
+  float3 emission = vload3(0, light.emission);
+  float light_pdf = pt_luminance(emission) * params->light_area_pdf_scale * dist2 / cos_light;
+  float weight = pt_power_heuristic(light_pdf, bsdf_pdf);
+  float3 origin = pt_offset_origin(p, ng);
+  float3 target = pt_offset_origin(y, light_normal);
+  path->shadow_origin = (float4)(origin, 0.0f);
+  path->shadow_span = (float4)(target - origin, 0.0f);
+  path->shadow_contribution = (float4)(path->throughput.xyz * f_cos * emission * (weight / light_pdf), 0.0f);
+  path->shadow_pending = 1;
+}
+
+/* Advances the path by its closest hit. Bounce k is the k-th surface the path meets; light
+ * is gathered at it (emission, and next-event estimation for surface k+1's light) and a new
+ * direction sampled while k <= max_bounces, as Cycles counts: max_bounces 0 is direct light only. */
+inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const PtRenderParams* params,
+                          HitRecord hit) {
+  path->shadow_pending = 0;
+  if (hit.triangle == KD_NO_HIT) {
+    path->alive = 0;
+    return;
+  }
+  uint k = path->bounce;
+  __global const kd_u32* idx = scene->kd.indices + 3 * hit.triangle;
+  float3 p0 = pt_load3(scene->kd.positions, idx[0]);
+  float3 p1 = pt_load3(scene->kd.positions, idx[1]);
+  float3 p2 = pt_load3(scene->kd.positions, idx[2]);
+  float w0 = 1.0f - hit.u - hit.v;
+  float3 p = w0 * p0 + hit.u * p1 + hit.v * p2;
+  float3 wo = -path->direction.xyz;
+  float3 ng = normalize(cross(p1 - p0, p2 - p0));
+  int front = dot(ng, wo) > 0.0f;
+  float3 ng_facing = front ? ng : -ng;
+  float3 n = ng_facing;
+#ifdef KD_FEATURE_NORMALS
+  float3 ns = w0 * pt_load3(scene->normals, idx[0]) + hit.u * pt_load3(scene->normals, idx[1]) +
+              hit.v * pt_load3(scene->normals, idx[2]);
+  if (dot(ns, ns) > 0.0f) {
+    ns = normalize(ns);
+    n = dot(ns, ng_facing) < 0.0f ? -ns : ns;
+  }
+#endif
+  PtMaterial m = scene->materials[scene->material_ids[hit.triangle]];
+  float3 color = vload3(0, m.base_color);
+#ifdef KD_FEATURE_TEXTURES
+  if (m.texture >= 0) {
+    float2 uv0 = vload2(idx[0], scene->uvs), uv1 = vload2(idx[1], scene->uvs), uv2 = vload2(idx[2], scene->uvs);
+    color *= pt_texture_lookup(scene, m.texture, w0 * uv0 + hit.u * uv1 + hit.v * uv2);
+  }
+#endif
+  if (k == 0) {
+    path->albedo = (float4)(color, 0.0f);
+    path->normal = (float4)(n, 0.0f);
+    path->depth = hit.t;
+  }
+  float3 beta = path->throughput.xyz;
+#ifdef KD_FEATURE_EMISSION
+  if (m.type == PT_EMISSIVE && front) {
+    float3 emission = vload3(0, m.emission);
+    float weight = 1.0f;
+    if (path->bsdf_pdf > 0.0f) {
+      float light_pdf = pt_luminance(emission) * params->light_area_pdf_scale * hit.t * hit.t / dot(ng, wo);
+      weight = pt_power_heuristic(path->bsdf_pdf, light_pdf);
+    }
+    path->radiance.xyz += beta * emission * weight;
+  }
+#endif
+  if (k > params->max_bounces) {
+    path->alive = 0;
+    return;
+  }
+  if (k >= PT_ROULETTE_START) {
+    float survive = fmin(pt_max3(beta), 1.0f);
+    if (pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_ROULETTE) >= survive) {
+      path->alive = 0;
+      return;
+    }
+    beta /= survive;
+    path->throughput.xyz = beta;
+  }
+#ifdef KD_FEATURE_EMISSION
+  if (params->light_count > 0 && !pt_is_delta(m.type)) pt_next_event(path, scene, params, &m, color, p, n, ng_facing, wo);
+#endif
+  PtBsdfSample s = pt_bsdf_sample(&m, color, n, wo, front,
+                                  pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_BSDF_U),
+                                  pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_BSDF_V));
+  float side = dot(s.wi, ng_facing);
+  if (pt_max3(s.weight) <= 0.0f || (s.transmits ? side >= 0.0f : side <= 0.0f)) {
+    path->alive = 0;
+    return;
+  }
+  path->throughput.xyz = beta * s.weight;
+  path->bsdf_pdf = s.is_delta ? 0.0f : s.pdf;
+  path->origin = (float4)(pt_offset_origin(p, s.transmits ? -ng_facing : ng_facing), 0.0f);
+  path->direction = (float4)(s.wi, 0.0f);
+  path->bounce = k + 1;
+}
+
+inline void pt_path_resolve_shadow(PtPath* path, int occluded) {
+  if (path->shadow_pending && !occluded) path->radiance.xyz += path->shadow_contribution.xyz;
+  path->shadow_pending = 0;
+}
+
+/* Fixed-point value of one sample (see PT_FIXED_BITS); non-finite values count as 0. */
+inline long pt_fixed(float value, uint* nonfinite) {
+  if (!isfinite(value)) {
+    *nonfinite += 1;
+    return 0;
+  }
+  value = clamp(value, -PT_FIXED_MAX, PT_FIXED_MAX);
+  return convert_long(rint(value * (float)(1 << PT_FIXED_BITS)));
+}
+
+/* Adds the finished sample into per-pixel channel sums: radiance, then the enabled AOVs. */
+inline void pt_path_accumulate(const PtPath* path, __global const PtRenderParams* params, long* sums,
+                               uint* nonfinite) {
+  uint c = 0;
+  sums[c++] += pt_fixed(path->radiance.x, nonfinite);
+  sums[c++] += pt_fixed(path->radiance.y, nonfinite);
+  sums[c++] += pt_fixed(path->radiance.z, nonfinite);
+  if (params->aov_mask & PT_AOV_ALBEDO) {
+    sums[c++] += pt_fixed(path->albedo.x, nonfinite);
+    sums[c++] += pt_fixed(path->albedo.y, nonfinite);
+    sums[c++] += pt_fixed(path->albedo.z, nonfinite);
+  }
+  if (params->aov_mask & PT_AOV_NORMAL) {
+    sums[c++] += pt_fixed(path->normal.x, nonfinite);
+    sums[c++] += pt_fixed(path->normal.y, nonfinite);
+    sums[c++] += pt_fixed(path->normal.z, nonfinite);
+  }
+  if (params->aov_mask & PT_AOV_DEPTH) sums[c++] += pt_fixed(path->depth, nonfinite);
+}
+#define PT_MAX_FILM_CHANNELS 10
+
+#endif /* PT_PATH_H */

@@ -1,0 +1,65 @@
+/* Sampling helpers for the path tracer (OpenCL C only: uses float3 arithmetic). */
+#ifndef PT_SAMPLING_H
+#define PT_SAMPLING_H
+
+#define PT_PI 3.14159265358979f
+#define PT_INV_PI 0.318309886183791f
+
+inline float pt_max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
+inline float pt_luminance(float3 c) { return (c.x + c.y + c.z) * (1.0f / 3.0f); }
+inline float3 pt_load3(__global const float* array, uint index) {
+  return (float3)(array[3 * index], array[3 * index + 1], array[3 * index + 2]);
+}
+
+/* Orthonormal basis around unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited"). */
+inline void pt_basis(float3 n, float3* t, float3* b) {
+  float sign = copysign(1.0f, n.z);
+  float a = -1.0f / (sign + n.z);
+  float c = n.x * n.y * a;
+  *t = (float3)(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  *b = (float3)(c, sign + n.y * n.y * a, -n.y);
+}
+
+inline float3 pt_to_world(float3 v, float3 n) {
+  float3 t, b;
+  pt_basis(n, &t, &b);
+  return v.x * t + v.y * b + v.z * n;
+}
+
+/* Cosine-weighted direction around n; pdf = cos(theta) / pi. */
+inline float3 pt_sample_cosine(float3 n, float u1, float u2) {
+  float r = sqrt(u1);
+  float phi = 2.0f * PT_PI * u2;
+  float z = sqrt(fmax(0.0f, 1.0f - u1));
+  return pt_to_world((float3)(r * cos(phi), r * sin(phi), z), n);
+}
+
+/* Uniform point on a triangle as barycentrics of vertices 1 and 2. */
+inline float2 pt_sample_triangle(float u1, float u2) {
+  float s = sqrt(u1);
+  return (float2)(s * (1.0f - u2), s * u2);
+}
+
+inline float pt_power_heuristic(float pdf_a, float pdf_b) {
+  float a = pdf_a * pdf_a;
+  float b = pdf_b * pdf_b;
+  return a / (a + b);
+}
+
+/* A secondary-ray origin that cannot re-hit the surface it leaves: p moved along the geometric
+ * normal n (facing the side the ray leaves to) by a few ULPs of p's own magnitude, or by a fixed
+ * tiny distance near the origin (Wachter & Binder 2019, Ray Tracing Gems ch. 6). */
+inline float3 pt_offset_origin(float3 p, float3 n) {
+  const float origin = 1.0f / 32.0f;
+  const float float_scale = 1.0f / 65536.0f;
+  const float int_scale = 256.0f;
+  int3 of = convert_int3(int_scale * n);
+  float3 p_int = (float3)(as_float(as_int(p.x) + (p.x < 0 ? -of.x : of.x)),
+                          as_float(as_int(p.y) + (p.y < 0 ? -of.y : of.y)),
+                          as_float(as_int(p.z) + (p.z < 0 ? -of.z : of.z)));
+  return (float3)(fabs(p.x) < origin ? p.x + float_scale * n.x : p_int.x,
+                  fabs(p.y) < origin ? p.y + float_scale * n.y : p_int.y,
+                  fabs(p.z) < origin ? p.z + float_scale * n.z : p_int.z);
+}
+
+#endif /* PT_SAMPLING_H */

@@ -1,0 +1,71 @@
+/* Path-tracer structs shared between the host (librender) and the device, byte for byte.
+ * Only kd_u32/kd_i32/float members and float[4] instead of float3 (16 bytes on devices). */
+#ifndef PT_TYPES_H
+#define PT_TYPES_H
+
+#include "kd_compat.h"
+
+/* Material kinds: the numbering of kdray::MaterialType (libscene/scene.h). */
+#define PT_DIFFUSE 0u
+#define PT_EMISSIVE 1u
+#define PT_MIRROR 2u
+#define PT_ROUGH_CONDUCTOR 3u
+#define PT_DIELECTRIC 4u
+
+typedef struct PtMaterial {
+  float base_color[3];
+  kd_u32 type;
+  float emission[3];
+  float roughness; /* GGX alpha */
+  float ior;
+  kd_i32 texture;  /* index into the PtTexture table or -1 */
+  kd_u32 pad0, pad1;
+} PtMaterial;
+KD_STATIC_ASSERT(sizeof(PtMaterial) == 48, "PtMaterial is 48 bytes");
+
+/* Texels are linear RGBA float4 (decoded from sRGB on the host), rows top to bottom. */
+typedef struct PtTexture {
+  kd_u32 first_texel;
+  kd_u32 width, height;
+  kd_u32 pad;
+} PtTexture;
+KD_STATIC_ASSERT(sizeof(PtTexture) == 16, "PtTexture is 16 bytes");
+
+/* One entry of the power-weighted emitter table: pick light i when cdf[i-1] <= u < cdf[i]. */
+typedef struct PtLight {
+  kd_u32 triangle;
+  float cdf;
+} PtLight;
+KD_STATIC_ASSERT(sizeof(PtLight) == 8, "PtLight is 8 bytes");
+
+/* Film channel layout: 3 radiance sums, then the AOVs in this order when enabled. */
+#define PT_AOV_ALBEDO 1u
+#define PT_AOV_NORMAL 2u
+#define PT_AOV_DEPTH 4u
+
+/* Fixed-point accumulation: every sample value is rounded to a multiple of 2^-PT_FIXED_BITS and
+ * summed as int64, so the sum of a sample range does not depend on the order of the additions and
+ * ranges rendered apart merge exactly. Values are clamped to +-PT_FIXED_MAX first. */
+#define PT_FIXED_BITS 20
+#define PT_FIXED_MAX 16777216.0f
+
+typedef struct PtRenderParams {
+  float cam_origin[4];
+  float cam_forward[4]; /* unit */
+  float cam_right[4];   /* scaled by tan(fov/2) * aspect */
+  float cam_up[4];      /* scaled by tan(fov/2) */
+  float bounds_min[4];  /* root voxel of the k-d tree */
+  float bounds_max[4];
+  kd_u32 width, height;
+  kd_u32 sample_offset, sample_count; /* this launch renders samples offset..offset+count-1 */
+  kd_u32 seed;
+  kd_u32 max_bounces;
+  kd_u32 light_count;
+  float light_area_pdf_scale; /* 1 / sum(luminance(Le) * area): area pdf = luminance(Le) * scale */
+  kd_u32 aov_mask;
+  kd_u32 film_channels;
+  kd_u32 pad0, pad1;
+} PtRenderParams;
+KD_STATIC_ASSERT(sizeof(PtRenderParams) == 144, "PtRenderParams is 144 bytes");
+
+#endif /* PT_TYPES_H */

@@ -1,0 +1,23 @@
+// Writing rendered films (EXR, PNG, JPEG) and reading kdrender EXRs back for merging.
+#pragma once
+
+#include <kdray/film.h>
+
+#include <string>
+
+namespace kdray {
+
+// By extension: .exr is linear float with the AOV layers, the exact fixed-point sums (channels
+// "kdray.sum.<channel>.hi/.lo", uint32) and metadata (kdray:spp, kdray:sample_offset, kdray:seed,
+// kdray:max_bounces, kdray:seconds, kdray:scene_hash, kdray:tree_hash); .png/.jpg/.jpeg are
+// 8-bit sRGB of the radiance, clamped. Written to a temporary name in the same directory and
+// renamed into place. Throws kdray::Error.
+void write_film_image(const std::string& path, const Film& film);
+
+// Reads an EXR written by write_film_image, sums included. Throws kdray::Error.
+Film read_film_exr(const std::string& path);
+
+// True when write_film_image knows the extension of path.
+bool is_supported_image_path(const std::string& path);
+
+}  // namespace kdray

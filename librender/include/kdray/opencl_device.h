@@ -1,0 +1,39 @@
+// OpenCL devices through the ICD loader, and how a tool picks one (--device).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace kdray {
+
+struct DeviceInfo {
+  int index = 0;  // position in list_devices(), over all platforms
+  std::string platform;
+  std::string name;
+  std::string driver_version;
+  bool is_gpu = false;
+  unsigned compute_units = 0;
+  size_t max_work_group_size = 0;
+};
+
+// Every device of every platform. Throws kdray::Error when no OpenCL platform exists, saying how
+// to install PoCL.
+std::vector<DeviceInfo> list_devices();
+
+// How to choose and drive a device; one struct so every tool and test passes the same thing.
+struct DeviceSelection {
+  std::string device = "auto";  // auto (a GPU if present, else the CPU) | cpu | gpu | INDEX
+  size_t local_size = 0;        // work-group size; 0: the device's default (64 on CPUs)
+  unsigned short_stack_size = 0;  // KD_SHORT_STACK_SIZE for the traversal; 0: the kernel default
+};
+
+// The device `selection` names; throws kdray::Error if there is none.
+DeviceInfo select_device(const DeviceSelection& selection);
+
+// Where compiled programs are cached: $KDRAY_CACHE_DIR, else $XDG_CACHE_HOME/kdray, else
+// ~/.cache/kdray. KDRAY_CACHE_DIR=off disables the disk cache (an empty string is returned).
+std::string program_cache_dir();
+
+}  // namespace kdray

@@ -1,0 +1,65 @@
+// Rendering a scene with its k-d tree on an OpenCL device: settings, statistics, the call.
+#pragma once
+
+#include <kdray/film.h>
+#include <kdray/kdtree.h>
+#include <kdray/opencl_device.h>
+#include <kdray/scene.h>
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace kdray {
+
+enum class RenderForm {
+  Megakernel,  // one kernel runs whole paths (the default: faster on PoCL, see BENCHMARKS.md)
+  Wavefront,   // one kernel per path step over a buffer of paths (kept for the comparison)
+};
+
+struct RenderSettings {
+  static constexpr uint32_t kDefaultSize = 512;
+  static constexpr uint32_t kDefaultSpp = 16;
+  static constexpr uint32_t kDefaultMaxBounces = 8;
+  static constexpr uint32_t kMaxBouncesLimit = 1024;
+
+  uint32_t width = kDefaultSize, height = kDefaultSize;
+  uint32_t spp = kDefaultSpp;     // samples per pixel in this range
+  uint32_t sample_offset = 0;     // renders samples sample_offset..sample_offset+spp-1
+  uint32_t seed = 0;
+  uint32_t max_bounces = kDefaultMaxBounces;  // as Cycles counts: 0 is direct light only
+  std::optional<Camera> camera;   // default: the scene's first camera
+  bool aov_albedo = false, aov_normal = false, aov_depth = false;
+  double time_limit_seconds = 0;  // > 0: stop after the last whole pass within the limit
+  RenderForm form = RenderForm::Megakernel;
+};
+
+struct RenderStats {
+  std::string device;
+  std::string kernel_options;   // the -D feature defines the program was built with
+  double build_seconds = 0;     // obtaining the OpenCL program
+  std::string build_source;     // "compiled", "disk cache" or "memory"
+  double upload_seconds = 0;
+  double render_seconds = 0;
+  uint32_t samples_rendered = 0;  // per pixel; below spp only when the time limit stopped it
+  uint64_t rays = 0;              // closest-hit and shadow rays traced
+  uint64_t nonfinite_values = 0;  // NaN/Inf sample values (counted as 0); should stay 0
+};
+
+// Called after each pass with the samples per pixel done so far and the total asked for.
+using RenderProgress = std::function<void(uint32_t done, uint32_t total)>;
+
+// Renders the range; throws kdray::Error for bad settings (size, camera, bounces).
+Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
+            const DeviceSelection& device, RenderStats* stats = nullptr, const RenderProgress& progress = {});
+
+// The OpenCL build options (feature defines) for a scene: only what it uses, so a diffuse-only
+// scene compiles a diffuse-only kernel.
+std::string kernel_feature_options(const Scene& scene, const DeviceSelection& device);
+
+// The camera from settings or the scene, checked (finite, non-degenerate, 0 < fov < 180).
+Camera render_camera(const Scene& scene, const RenderSettings& settings);
+
+}  // namespace kdray

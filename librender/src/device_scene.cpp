@@ -1,0 +1,114 @@
+// Scene and tree upload (see device_scene.h).
+#include "device_scene.h"
+
+#include <kernels/pt_types.h>
+
+#include <cmath>
+
+namespace kdray {
+namespace {
+
+float luminance(const Vec3& c) { return (c.x + c.y + c.z) / 3.0f; }
+
+double triangle_area(const Scene& scene, uint32_t triangle) {
+  const Vec3& a = scene.positions[scene.indices[3 * triangle]];
+  const Vec3& b = scene.positions[scene.indices[3 * triangle + 1]];
+  const Vec3& c = scene.positions[scene.indices[3 * triangle + 2]];
+  double e1[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, e2[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
+  double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
+  return 0.5 * std::sqrt(cx * cx + cy * cy + cz * cz);
+}
+
+float srgb_to_linear(uint8_t value) {
+  float c = value / 255.0f;
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+template <typename T>
+cl::Buffer upload_vector(cl::Runtime& runtime, const std::vector<T>& values) {
+  return runtime.buffer(values.size() * sizeof(T), values.data());
+}
+
+}  // namespace
+
+DeviceGeometry upload_geometry(cl::Runtime& runtime, const Scene& scene, const KdTree& tree) {
+  DeviceGeometry geometry;
+  geometry.nodes = upload_vector(runtime, tree.nodes);
+  geometry.leaf_triangles = upload_vector(runtime, tree.leaf_triangles);
+  geometry.indices = upload_vector(runtime, scene.indices);
+  geometry.positions = upload_vector(runtime, scene.positions);
+  const Vec3& lo = tree.bounds.min;
+  const Vec3& hi = tree.bounds.max;
+  float min[3] = {lo.x, lo.y, lo.z}, max[3] = {hi.x, hi.y, hi.z};
+  for (int axis = 0; axis < 3; ++axis) {
+    geometry.bounds_min[axis] = min[axis];
+    geometry.bounds_max[axis] = max[axis];
+  }
+  return geometry;
+}
+
+DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree& tree) {
+  DeviceScene device;
+  device.geometry = upload_geometry(runtime, scene, tree);
+  device.material_ids = upload_vector(runtime, scene.material_ids);
+  device.normals = upload_vector(runtime, scene.normals);
+  device.uvs = upload_vector(runtime, scene.uvs);
+
+  std::vector<PtMaterial> materials;
+  for (const Material& m : scene.materials) {
+    PtMaterial pm{};
+    pm.base_color[0] = m.base_color.x;
+    pm.base_color[1] = m.base_color.y;
+    pm.base_color[2] = m.base_color.z;
+    pm.type = static_cast<kd_u32>(m.type);
+    pm.emission[0] = m.emission.x;
+    pm.emission[1] = m.emission.y;
+    pm.emission[2] = m.emission.z;
+    pm.roughness = m.roughness;
+    pm.ior = m.ior;
+    pm.texture = scene.uvs.empty() ? -1 : m.diffuse_texture;
+    materials.push_back(pm);
+  }
+  device.materials = upload_vector(runtime, materials);
+
+  std::vector<PtTexture> textures;
+  std::vector<float> texels;  // RGBA per texel
+  for (const Texture& texture : scene.textures) {
+    textures.push_back(PtTexture{static_cast<kd_u32>(texels.size() / 4), texture.width, texture.height, 0});
+    for (size_t i = 0; i < texture.rgba.size(); ++i) {
+      texels.push_back(i % 4 == 3 ? texture.rgba[i] / 255.0f : srgb_to_linear(texture.rgba[i]));
+    }
+  }
+  device.textures = upload_vector(runtime, textures);
+  device.texels = upload_vector(runtime, texels);
+
+  // Power-weighted emitter table; triangles whose emission has no power are never picked.
+  std::vector<PtLight> lights;
+  double total = 0;
+  std::vector<double> powers;
+  for (uint32_t triangle : scene.emissive_triangles) {
+    const Material& m = scene.materials[scene.material_ids[triangle]];
+    double power = luminance(m.emission) * triangle_area(scene, triangle);
+    if (!(power > 0) || m.type != MaterialType::Emissive) continue;
+    total += power;
+    powers.push_back(total);
+    lights.push_back(PtLight{triangle, 0});
+  }
+  for (size_t i = 0; i < lights.size(); ++i) lights[i].cdf = static_cast<float>(powers[i] / total);
+  if (!lights.empty()) lights.back().cdf = 1.0f;
+  device.light_count = static_cast<uint32_t>(lights.size());
+  device.light_area_pdf_scale = total > 0 ? static_cast<float>(1.0 / total) : 0.0f;
+  device.lights = upload_vector(runtime, lights);
+  return device;
+}
+
+cl_uint bind_scene_args(cl_kernel kernel, const DeviceScene& scene, const cl::Buffer& params) {
+  const cl::Buffer* buffers[] = {&scene.geometry.nodes, &scene.geometry.leaf_triangles, &scene.geometry.indices,
+                                 &scene.geometry.positions, &scene.material_ids, &scene.materials, &scene.normals,
+                                 &scene.uvs, &scene.textures, &scene.texels, &scene.lights, &params};
+  cl_uint index = 0;
+  for (const cl::Buffer* buffer : buffers) cl::set_arg(kernel, index++, *buffer);
+  return index;
+}
+
+}  // namespace kdray

@@ -1,0 +1,31 @@
+// Internal to librender: the one place where a scene and its tree are turned into device
+// buffers (layouts of kernels/pt_types.h), shared by the renderer and the trace kernel.
+#pragma once
+
+#include "opencl_runtime.h"
+
+#include <kdray/kdtree.h>
+#include <kdray/scene.h>
+
+namespace kdray {
+
+struct DeviceGeometry {
+  cl::Buffer nodes, leaf_triangles, indices, positions;
+  float bounds_min[3] = {0, 0, 0}, bounds_max[3] = {0, 0, 0};
+};
+
+struct DeviceScene {
+  DeviceGeometry geometry;
+  cl::Buffer material_ids, materials, normals, uvs, textures, texels, lights;
+  uint32_t light_count = 0;
+  float light_area_pdf_scale = 0;  // 1 / sum(luminance(Le) * area)
+};
+
+DeviceGeometry upload_geometry(cl::Runtime& runtime, const Scene& scene, const KdTree& tree);
+DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree& tree);
+
+// Binds the PT_SCENE_ARGS arguments (kernels/pt_kernel_args.h) of kernel, params last;
+// returns the index of the next argument.
+cl_uint bind_scene_args(cl_kernel kernel, const DeviceScene& scene, const cl::Buffer& params);
+
+}  // namespace kdray

@@ -1,0 +1,192 @@
+// Film images through OpenImageIO (see image_io.h).
+#include <kdray/error.h>
+#include <kdray/image_io.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include <unistd.h>
+
+namespace kdray {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kSumPrefix = "kdray.sum.";
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+std::string hex64(uint64_t value) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+  return text;
+}
+
+uint8_t srgb_byte(float linear) {
+  float c = std::clamp(std::isfinite(linear) ? linear : 0.0f, 0.0f, 1.0f);
+  float encoded = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+  return static_cast<uint8_t>(std::lround(encoded * 255.0f));
+}
+
+// Writes through a temporary file next to path (same extension, so OIIO picks the format).
+void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, const void* pixels) {
+  fs::path target(path);
+  fs::path temp = target.parent_path() /
+                  ("." + target.stem().string() + ".tmp-" + std::to_string(getpid()) + target.extension().string());
+  auto out = OIIO::ImageOutput::create(temp.string());
+  if (!out) throw Error(path, "cannot write this image format: " + OIIO::geterror());
+  bool ok = out->open(temp.string(), spec) && out->write_image(OIIO::TypeDesc::UNKNOWN, pixels);
+  std::string problem = ok ? std::string() : out->geterror();
+  ok = out->close() && ok;
+  std::error_code error;
+  if (!ok) {
+    fs::remove(temp, error);
+    throw Error(path, "cannot write image: " + (problem.empty() ? std::string("I/O error") : problem));
+  }
+  fs::rename(temp, target, error);
+  if (error) {
+    fs::remove(temp, error);
+    throw Error(path, "cannot move the finished image into place: " + error.message());
+  }
+}
+
+void write_exr(const std::string& path, const Film& film) {
+  const size_t stride = film.channels.size();
+  const size_t total_channels = stride * 3;  // mean, sum hi, sum lo
+  OIIO::ImageSpec spec(int(film.width), int(film.height), int(total_channels), OIIO::TypeDesc::FLOAT);
+  spec.channelnames.clear();
+  spec.channelformats.clear();
+  for (const std::string& name : film.channels) {
+    spec.channelnames.push_back(name);
+    spec.channelformats.push_back(OIIO::TypeDesc::FLOAT);
+  }
+  for (const std::string& name : film.channels) {
+    for (const char* half : {".hi", ".lo"}) {
+      spec.channelnames.push_back(kSumPrefix + name + half);
+      spec.channelformats.push_back(OIIO::TypeDesc::UINT);
+    }
+  }
+  spec.alpha_channel = -1;
+  spec.z_channel = -1;
+  spec.attribute("compression", "zip");
+  spec.attribute("kdray:spp", film.sample_count);
+  spec.attribute("kdray:sample_offset", film.sample_offset);
+  spec.attribute("kdray:seed", film.seed);
+  spec.attribute("kdray:max_bounces", film.max_bounces);
+  spec.attribute("kdray:seconds", float(film.render_seconds));
+  spec.attribute("kdray:scene_hash", hex64(film.scene_hash));
+  spec.attribute("kdray:tree_hash", hex64(film.tree_hash));
+  spec.attribute("kdray:fixed_bits", kFilmFixedBits);
+
+  std::vector<float> means = film.means();
+  std::vector<uint32_t> pixels(film.pixel_count() * total_channels);  // every channel is 4 bytes
+  for (size_t p = 0; p < film.pixel_count(); ++p) {
+    uint32_t* out = &pixels[p * total_channels];
+    for (size_t c = 0; c < stride; ++c) {
+      std::memcpy(&out[c], &means[p * stride + c], sizeof(float));
+      uint64_t bits = static_cast<uint64_t>(film.sums[p * stride + c]);
+      out[stride + 2 * c] = static_cast<uint32_t>(bits >> 32);
+      out[stride + 2 * c + 1] = static_cast<uint32_t>(bits);
+    }
+  }
+  write_atomically(path, spec, pixels.data());
+}
+
+void write_ldr(const std::string& path, const Film& film) {
+  std::vector<float> means = film.means();
+  const size_t stride = film.channels.size();
+  std::vector<uint8_t> pixels(film.pixel_count() * 3);
+  for (size_t p = 0; p < film.pixel_count(); ++p) {
+    for (size_t c = 0; c < 3; ++c) pixels[p * 3 + c] = srgb_byte(means[p * stride + c]);
+  }
+  OIIO::ImageSpec spec(int(film.width), int(film.height), 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  spec.attribute("Software", "kdray kdrender");
+  write_atomically(path, spec, pixels.data());
+}
+
+uint64_t parse_hex(const std::string& path, const std::string& text) {
+  char* end = nullptr;
+  unsigned long long value = std::strtoull(text.c_str(), &end, 16);
+  if (text.empty() || *end != '\0') throw Error(path, "bad hash in the kdray metadata");
+  return value;
+}
+
+}  // namespace
+
+bool is_supported_image_path(const std::string& path) {
+  std::string ext = lower_extension(path);
+  return ext == ".exr" || ext == ".png" || ext == ".jpg" || ext == ".jpeg";
+}
+
+void write_film_image(const std::string& path, const Film& film) {
+  std::string ext = lower_extension(path);
+  if (ext == ".exr") return write_exr(path, film);
+  if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") return write_ldr(path, film);
+  throw Error(path, "unsupported output format '" + ext + "' (use .exr, .png or .jpg)");
+}
+
+Film read_film_exr(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw Error(path, "cannot read image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  Film film;
+  film.width = uint32_t(spec.width);
+  film.height = uint32_t(spec.height);
+  auto channel_index = [&](const std::string& name) {
+    auto found = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
+    return found == spec.channelnames.end() ? -1 : int(found - spec.channelnames.begin());
+  };
+  std::vector<int> hi_index, lo_index;
+  for (int c = 0; c < spec.nchannels; ++c) {
+    const std::string& name = spec.channelnames[size_t(c)];
+    if (name.rfind(kSumPrefix, 0) == 0) continue;
+    int hi = channel_index(kSumPrefix + name + ".hi"), lo = channel_index(kSumPrefix + name + ".lo");
+    if (hi < 0 || lo < 0) throw Error(path, "not a kdrender EXR: channel " + name + " has no exact sums to merge");
+    film.channels.push_back(name);
+    hi_index.push_back(hi);
+    lo_index.push_back(lo);
+  }
+  if (film.channels.empty()) throw Error(path, "not a kdrender EXR: no image channels");
+  for (const char* key : {"kdray:spp", "kdray:sample_offset", "kdray:seed", "kdray:max_bounces", "kdray:scene_hash",
+                          "kdray:tree_hash"}) {
+    if (!spec.find_attribute(key)) throw Error(path, std::string("not a kdrender EXR: no ") + key + " metadata");
+  }
+  if (spec.get_int_attribute("kdray:fixed_bits", kFilmFixedBits) != kFilmFixedBits) {
+    throw Error(path, "written with another fixed-point precision; cannot merge");
+  }
+  film.sample_count = uint32_t(spec.get_int_attribute("kdray:spp"));
+  film.sample_offset = uint32_t(spec.get_int_attribute("kdray:sample_offset"));
+  film.seed = uint32_t(spec.get_int_attribute("kdray:seed"));
+  film.max_bounces = uint32_t(spec.get_int_attribute("kdray:max_bounces"));
+  film.render_seconds = spec.get_float_attribute("kdray:seconds");
+  film.scene_hash = parse_hex(path, spec.get_string_attribute("kdray:scene_hash"));
+  film.tree_hash = parse_hex(path, spec.get_string_attribute("kdray:tree_hash"));
+
+  std::vector<uint32_t> sum_channel(film.pixel_count());
+  film.sums.assign(film.pixel_count() * film.channels.size(), 0);
+  for (size_t c = 0; c < film.channels.size(); ++c) {
+    for (int part = 0; part < 2; ++part) {
+      int index = part == 0 ? hi_index[c] : lo_index[c];
+      if (!in->read_image(0, 0, index, index + 1, OIIO::TypeDesc::UINT, sum_channel.data())) {
+        throw Error(path, "cannot read image: " + in->geterror());
+      }
+      for (size_t p = 0; p < film.pixel_count(); ++p) {
+        uint64_t bits = static_cast<uint64_t>(film.sums[p * film.channels.size() + c]);
+        bits |= part == 0 ? uint64_t(sum_channel[p]) << 32 : uint64_t(sum_channel[p]);
+        film.sums[p * film.channels.size() + c] = static_cast<int64_t>(bits);
+      }
+    }
+  }
+  return film;
+}
+
+}  // namespace kdray

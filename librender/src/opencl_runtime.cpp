@@ -1,0 +1,188 @@
+// OpenCL devices, contexts and launches (see opencl_runtime.h).
+#include "opencl_runtime.h"
+
+#include <kdray/error.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <stdexcept>
+#include <vector>
+
+namespace kdray {
+namespace {
+
+const char* const kNoPlatformHelp =
+    "no OpenCL platform found: install an OpenCL driver, e.g. PoCL for the CPU "
+    "(apt-get install pocl-opencl-icd), and check with `clinfo -l`";
+
+std::string device_string(cl_device_id device, cl_device_info what) {
+  size_t size = 0;
+  cl::check(clGetDeviceInfo(device, what, 0, nullptr, &size), "clGetDeviceInfo");
+  std::string text(size, '\0');
+  cl::check(clGetDeviceInfo(device, what, size, text.data(), nullptr), "clGetDeviceInfo");
+  while (!text.empty() && text.back() == '\0') text.pop_back();
+  return text;
+}
+
+std::string platform_string(cl_platform_id platform, cl_platform_info what) {
+  size_t size = 0;
+  cl::check(clGetPlatformInfo(platform, what, 0, nullptr, &size), "clGetPlatformInfo");
+  std::string text(size, '\0');
+  cl::check(clGetPlatformInfo(platform, what, size, text.data(), nullptr), "clGetPlatformInfo");
+  while (!text.empty() && text.back() == '\0') text.pop_back();
+  return text;
+}
+
+// All devices in list order, with their ids (kept internal: DeviceInfo is host-only data).
+std::vector<std::pair<DeviceInfo, cl_device_id>> enumerate_devices() {
+  cl_uint platform_count = 0;
+  cl_int status = clGetPlatformIDs(0, nullptr, &platform_count);
+  if (status == CL_PLATFORM_NOT_FOUND_KHR || platform_count == 0) throw Error("", kNoPlatformHelp);
+  cl::check(status, "clGetPlatformIDs");
+  std::vector<cl_platform_id> platforms(platform_count);
+  cl::check(clGetPlatformIDs(platform_count, platforms.data(), nullptr), "clGetPlatformIDs");
+  std::vector<std::pair<DeviceInfo, cl_device_id>> devices;
+  for (cl_platform_id platform : platforms) {
+    cl_uint count = 0;
+    if (clGetDeviceIDs(platform, CL_DEVICE_TYPE_ALL, 0, nullptr, &count) != CL_SUCCESS || count == 0) continue;
+    std::vector<cl_device_id> ids(count);
+    cl::check(clGetDeviceIDs(platform, CL_DEVICE_TYPE_ALL, count, ids.data(), nullptr), "clGetDeviceIDs");
+    for (cl_device_id id : ids) {
+      DeviceInfo info;
+      info.index = static_cast<int>(devices.size());
+      info.platform = platform_string(platform, CL_PLATFORM_NAME);
+      info.name = device_string(id, CL_DEVICE_NAME);
+      info.driver_version = device_string(id, CL_DRIVER_VERSION);
+      cl_device_type type = 0;
+      cl::check(clGetDeviceInfo(id, CL_DEVICE_TYPE, sizeof type, &type, nullptr), "clGetDeviceInfo");
+      info.is_gpu = (type & CL_DEVICE_TYPE_GPU) != 0;
+      cl_uint units = 0;
+      cl::check(clGetDeviceInfo(id, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof units, &units, nullptr), "clGetDeviceInfo");
+      info.compute_units = units;
+      cl::check(clGetDeviceInfo(id, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof info.max_work_group_size,
+                                &info.max_work_group_size, nullptr),
+                "clGetDeviceInfo");
+      devices.emplace_back(info, id);
+    }
+  }
+  if (devices.empty()) throw Error("", kNoPlatformHelp);
+  return devices;
+}
+
+std::pair<DeviceInfo, cl_device_id> resolve(const DeviceSelection& selection) {
+  auto devices = enumerate_devices();
+  const std::string& choice = selection.device;
+  auto first_of = [&](bool gpu) {
+    return std::find_if(devices.begin(), devices.end(), [&](const auto& d) { return d.first.is_gpu == gpu; });
+  };
+  if (choice == "auto") {
+    auto gpu = first_of(true);
+    return gpu != devices.end() ? *gpu : devices.front();
+  }
+  if (choice == "gpu" || choice == "cpu") {
+    auto found = first_of(choice == "gpu");
+    if (found == devices.end()) throw Error("", "--device " + choice + ": no such device (see --device list)");
+    return *found;
+  }
+  char* end = nullptr;
+  long index = std::strtol(choice.c_str(), &end, 10);
+  if (choice.empty() || *end != '\0' || index < 0 || index >= static_cast<long>(devices.size())) {
+    throw Error("", "--device " + choice + ": expected auto, cpu, gpu or an index below " +
+                        std::to_string(devices.size()) + " (see --device list)");
+  }
+  return devices[static_cast<size_t>(index)];
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> list_devices() {
+  std::vector<DeviceInfo> infos;
+  for (auto& device : enumerate_devices()) infos.push_back(device.first);
+  return infos;
+}
+
+DeviceInfo select_device(const DeviceSelection& selection) { return resolve(selection).first; }
+
+namespace cl {
+
+void check(cl_int status, const char* what) {
+  if (status != CL_SUCCESS) {
+    throw std::runtime_error(std::string("OpenCL: ") + what + " failed (error " + std::to_string(status) + ")");
+  }
+}
+
+Runtime::Runtime(const DeviceInfo& info) : info_(info) {
+  for (auto& device : enumerate_devices()) {
+    if (device.first.index == info.index) device_ = device.second;
+  }
+  cl_int status = CL_SUCCESS;
+  context_ = clCreateContext(nullptr, 1, &device_, nullptr, nullptr, &status);
+  check(status, "clCreateContext");
+  queue_ = clCreateCommandQueue(context_, device_, 0, &status);
+  check(status, "clCreateCommandQueue");
+}
+
+Runtime::~Runtime() {
+  programs_.clear();
+  if (queue_) clReleaseCommandQueue(queue_);
+  if (context_) clReleaseContext(context_);
+}
+
+Buffer Runtime::buffer(size_t bytes, const void* data, cl_mem_flags flags) {
+  cl_int status = CL_SUCCESS;
+  size_t size = std::max<size_t>(bytes, 16);
+  if (data && bytes > 0) flags |= CL_MEM_COPY_HOST_PTR;
+  cl_mem mem = clCreateBuffer(context_, flags, size, (data && bytes > 0) ? const_cast<void*>(data) : nullptr, &status);
+  check(status, "clCreateBuffer");
+  return Buffer(mem);
+}
+
+size_t Runtime::local_size(const DeviceSelection& selection) const {
+  size_t wanted = selection.local_size ? selection.local_size : 64;
+  if (wanted > info_.max_work_group_size) {
+    throw Error("", "--local-size " + std::to_string(wanted) + " exceeds the device's limit of " +
+                        std::to_string(info_.max_work_group_size));
+  }
+  return wanted;
+}
+
+size_t Runtime::persistent_global_size(size_t local_size) const {
+  size_t groups_per_unit = info_.is_gpu ? 16 : 1;
+  return local_size * groups_per_unit * std::max(1u, info_.compute_units);
+}
+
+Runtime& runtime_for(const DeviceSelection& selection) {
+  static std::mutex mutex;
+  static std::map<int, std::unique_ptr<Runtime>> runtimes;
+  DeviceInfo info = select_device(selection);
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = runtimes[info.index];
+  if (!slot) slot = std::make_unique<Runtime>(info);
+  return *slot;
+}
+
+Kernel create_kernel(cl_program program, const char* name) {
+  cl_int status = CL_SUCCESS;
+  cl_kernel kernel = clCreateKernel(program, name, &status);
+  check(status, "clCreateKernel");
+  return Kernel(kernel);
+}
+
+void run_kernel(cl_command_queue queue, cl_kernel kernel, size_t global_size, size_t local_size) {
+  size_t global = (global_size + local_size - 1) / local_size * local_size;
+  check(clEnqueueNDRangeKernel(queue, kernel, 1, nullptr, &global, &local_size, 0, nullptr, nullptr),
+        "clEnqueueNDRangeKernel");
+}
+
+void zero_buffer(cl_command_queue queue, const Buffer& buffer, size_t bytes) {
+  const cl_uint zero = 0;
+  check(clEnqueueFillBuffer(queue, buffer.get(), &zero, sizeof zero, 0, bytes, 0, nullptr, nullptr),
+        "clEnqueueFillBuffer");
+}
+
+void read_buffer(cl_command_queue queue, const Buffer& buffer, size_t bytes, void* out) {
+  check(clEnqueueReadBuffer(queue, buffer.get(), CL_TRUE, 0, bytes, out, 0, nullptr, nullptr), "clEnqueueReadBuffer");
+}
+
+}  // namespace cl
+}  // namespace kdray

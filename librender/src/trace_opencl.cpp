@@ -1,0 +1,62 @@
+// trace_rays_opencl: the kd_trace.cl kernel over a ray buffer (see trace_opencl.h).
+#include "device_scene.h"
+
+#include <kdray/trace_opencl.h>
+
+#include <chrono>
+
+namespace kdray {
+
+std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
+                                         const DeviceSelection& device, TraceOpenClStats* stats_out) {
+  using Clock = std::chrono::steady_clock;
+  auto seconds_since = [](Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
+  TraceOpenClStats stats;
+  cl::Runtime& runtime = cl::runtime_for(device);
+  stats.device = runtime.info().name;
+  std::string options = "-cl-std=CL1.2";
+  if (device.short_stack_size) options += " -DKD_SHORT_STACK_SIZE=" + std::to_string(device.short_stack_size);
+  cl::ProgramBuild build = runtime.program("kd_trace.cl", options);
+  stats.build_seconds = build.seconds;
+  stats.build_source = build.source;
+
+  auto upload_start = Clock::now();
+  DeviceGeometry geometry = upload_geometry(runtime, scene, tree);
+  cl::Buffer ray_buffer = runtime.buffer(rays.size() * sizeof(RayRecord), rays.data());
+  cl::Buffer hit_buffer = runtime.buffer(rays.size() * sizeof(HitRecord), nullptr, CL_MEM_WRITE_ONLY);
+  cl::Buffer counter = runtime.buffer(sizeof(cl_uint), nullptr, CL_MEM_READ_WRITE);
+  cl::zero_buffer(runtime.queue(), counter, sizeof(cl_uint));
+  cl::Kernel kernel = cl::create_kernel(build.program, "kd_trace_closest");
+  cl_float4 bounds_min = {{geometry.bounds_min[0], geometry.bounds_min[1], geometry.bounds_min[2], 0}};
+  cl_float4 bounds_max = {{geometry.bounds_max[0], geometry.bounds_max[1], geometry.bounds_max[2], 0}};
+  cl_uint ray_count = static_cast<cl_uint>(rays.size());
+  cl_uint arg = 0;
+  cl::set_arg(kernel.get(), arg++, geometry.nodes);
+  cl::set_arg(kernel.get(), arg++, geometry.leaf_triangles);
+  cl::set_arg(kernel.get(), arg++, geometry.indices);
+  cl::set_arg(kernel.get(), arg++, geometry.positions);
+  cl::set_arg(kernel.get(), arg++, bounds_min);
+  cl::set_arg(kernel.get(), arg++, bounds_max);
+  cl::set_arg(kernel.get(), arg++, ray_buffer);
+  cl::set_arg(kernel.get(), arg++, ray_count);
+  cl::set_arg(kernel.get(), arg++, hit_buffer);
+  cl::set_arg(kernel.get(), arg++, counter);
+  cl::check(clFinish(runtime.queue()), "clFinish");
+  stats.upload_seconds = seconds_since(upload_start);
+
+  std::vector<HitRecord> hits(rays.size());
+  auto trace_start = Clock::now();
+  if (!rays.empty()) {
+    size_t local = runtime.local_size(device);
+    cl::run_kernel(runtime.queue(), kernel.get(), runtime.persistent_global_size(local), local);
+    cl::check(clFinish(runtime.queue()), "clFinish");
+  }
+  stats.trace_seconds = seconds_since(trace_start);
+  if (!rays.empty()) cl::read_buffer(runtime.queue(), hit_buffer, hits.size() * sizeof(HitRecord), hits.data());
+  if (stats_out) *stats_out = stats;
+  return hits;
+}
+
+}  // namespace kdray

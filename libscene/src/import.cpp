@@ -130,8 +130,14 @@ int32_t TextureCache::cached(const std::string& key, Decode decode) {
   return index;
 }
 
-int32_t TextureCache::from_file(const std::string& path) {
-  return cached(path, [&](std::string& problem) { return decode_texture_file(path, problem); });
+int32_t TextureCache::from_file(const std::string& written_path, const std::string& reference) {
+  std::string path = written_path;
+  std::replace(path.begin(), path.end(), '\\', '/');  // Windows exporters write backslashes
+  return cached(path, [&](std::string& problem) {
+    std::optional<Texture> texture = decode_texture_file(path, problem);
+    if (texture) texture->name = reference;
+    return texture;
+  });
 }
 
 int32_t TextureCache::from_memory(const std::string& key, const void* data, size_t size, const std::string& format_hint) {

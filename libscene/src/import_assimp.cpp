@@ -2,6 +2,7 @@
 // node hierarchy is walked here so each mesh instance lands in world space, once per use.
 #include "importers.h"
 
+#include "declared_counts.h"
 #include "material_mapping.h"
 #include "mesh_builder.h"
 #include "polygon.h"
@@ -98,7 +99,7 @@ class AssimpConverter {
         if (const aiTexture* embedded = source_.GetEmbeddedTexture(source.diffuse_texture.c_str()))
           material.diffuse_texture = embedded_texture(textures, source.diffuse_texture, *embedded);
         else
-          material.diffuse_texture = textures.from_file((directory / source.diffuse_texture).string());
+          material.diffuse_texture = textures.from_file((directory / source.diffuse_texture).string(), source.diffuse_texture);
       }
       scene_.materials.push_back(material);
     }
@@ -181,6 +182,7 @@ class AssimpConverter {
 }  // namespace
 
 Scene import_with_assimp(const std::string& path) {
+  check_declared_counts(path);
   Assimp::Importer importer;
   const aiScene* source = importer.ReadFile(path, kPostProcess);
   if (source == nullptr || source->mRootNode == nullptr) {

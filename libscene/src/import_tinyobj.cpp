@@ -12,6 +12,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <map>
 #include <unordered_map>
 
 namespace kdray {
@@ -45,17 +47,53 @@ SourceMaterial source_material(const tinyobj::material_t& mtl) {
   return source;
 }
 
+struct ObjData {
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+};
+
+// Finds `mtllib` files relative to the OBJ, and failing that by their bare name beside it:
+// exporters sometimes write a path relative to some other root (CornellBox-Glossy.obj).
+class MtlReader : public tinyobj::MaterialReader {
+ public:
+  explicit MtlReader(std::filesystem::path obj_directory) : obj_directory_(std::move(obj_directory)) {}
+
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* index_of, std::string* warnings, std::string* errors) override {
+    const std::filesystem::path candidates[] = {obj_directory_ / name,
+                                                obj_directory_ / std::filesystem::path(name).filename()};
+    for (const std::filesystem::path& candidate : candidates) {
+      std::ifstream stream(candidate);
+      if (!stream) continue;
+      tinyobj::LoadMtl(index_of, materials, &stream, warnings, errors);  // replaces *warnings
+      if (candidate != candidates[0])
+        *warnings += "material file " + name + " not found; using " + candidate.filename().string() + " beside the OBJ\n";
+      directory_ = candidate.parent_path();
+      return true;
+    }
+    *warnings += "material file " + name + " not found\n";
+    return false;
+  }
+
+  // Where map_Kd paths are resolved: the directory of the material file that was read.
+  const std::filesystem::path& directory() const { return directory_.empty() ? obj_directory_ : directory_; }
+
+ private:
+  std::filesystem::path obj_directory_;
+  std::filesystem::path directory_;
+};
+
 class ObjConverter {
  public:
-  ObjConverter(const std::string& path, const tinyobj::ObjReader& reader, Scene& scene)
-      : path_(path), attrib_(reader.GetAttrib()), scene_(scene), builder_(scene.import_stats) {
-    const std::string directory = std::filesystem::path(path).parent_path().string();
+  ObjConverter(const std::string& path, const ObjData& obj, const std::filesystem::path& texture_directory, Scene& scene)
+      : path_(path), attrib_(obj.attrib), scene_(scene), builder_(scene.import_stats) {
     TextureCache textures(scene);
-    for (const tinyobj::material_t& mtl : reader.GetMaterials()) {
+    for (const tinyobj::material_t& mtl : obj.materials) {
       SourceMaterial source = source_material(mtl);
       Material material = map_material(source);
       if (!source.diffuse_texture.empty())
-        material.diffuse_texture = textures.from_file((std::filesystem::path(directory) / source.diffuse_texture).string());
+        material.diffuse_texture = textures.from_file((texture_directory / source.diffuse_texture).string(), source.diffuse_texture);
       scene.materials.push_back(material);
     }
   }
@@ -94,8 +132,8 @@ class ObjConverter {
     if (found != vertex_of_.end()) return found->second;
     const size_t vertex_count = attrib_.vertices.size() / 3;
     if (index.vertex_index < 0 || size_t(index.vertex_index) >= vertex_count)
-      throw Error(path_, "a face refers to vertex " + std::to_string(index.vertex_index + 1) + " but the file has " +
-                             std::to_string(vertex_count));
+      throw Error(path_, "a face refers to a vertex that does not exist (number " +
+                             std::to_string(int64_t(index.vertex_index) + 1) + " of " + std::to_string(vertex_count) + ")");
     const float* v = &attrib_.vertices[3 * size_t(index.vertex_index)];
     std::optional<Vec3> normal;
     if (index.normal_index >= 0 && size_t(index.normal_index) < attrib_.normals.size() / 3) {
@@ -137,24 +175,24 @@ class ObjConverter {
 }  // namespace
 
 Scene import_with_tinyobj(const std::string& path) {
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = false;
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config)) {
-    std::string message = reader.Error();
-    while (!message.empty() && (message.back() == '\n' || message.back() == '\r')) message.pop_back();
-    throw Error(path, "tinyobjloader cannot read it: " + (message.empty() ? std::string("unknown error") : message));
-  }
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw Error(path, "cannot open");
   Scene scene;
   scene.import_stats.importer = "tinyobj";
-  const std::string& warnings = reader.Warning();
+  ObjData obj;
+  MtlReader mtl_reader(std::filesystem::path(path).parent_path());
+  std::string warnings, error;
+  if (!tinyobj::LoadObj(&obj.attrib, &obj.shapes, &obj.materials, &warnings, &error, &file, &mtl_reader,
+                        /*triangulate=*/false, /*default_vcols_fallback=*/false)) {
+    while (!error.empty() && (error.back() == '\n' || error.back() == '\r')) error.pop_back();
+    throw Error(path, "tinyobjloader cannot read it: " + (error.empty() ? std::string("unknown error") : error));
+  }
   for (size_t start = 0, end; start < warnings.size(); start = end + 1) {
     end = std::min(warnings.find('\n', start), warnings.size());
     if (end > start) scene.import_stats.warnings.push_back("tinyobjloader: " + warnings.substr(start, end - start));
   }
-  ObjConverter converter(path, reader, scene);
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) converter.add_shape(shape);
+  ObjConverter converter(path, obj, mtl_reader.directory(), scene);
+  for (const tinyobj::shape_t& shape : obj.shapes) converter.add_shape(shape);
   converter.finish();
   return scene;
 }

@@ -18,7 +18,9 @@ Scene import_with_assimp(const std::string& path);
 class TextureCache {
  public:
   explicit TextureCache(Scene& scene) : scene_(scene) {}
-  int32_t from_file(const std::string& path);
+  // `reference` is the name as the material writes it; it names the texture in the scene, so
+  // the content hash does not depend on where the asset was converted.
+  int32_t from_file(const std::string& path, const std::string& reference);
   int32_t from_memory(const std::string& key, const void* data, size_t size, const std::string& format_hint);
 
  private:

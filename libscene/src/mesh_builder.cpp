@@ -1,5 +1,6 @@
 #include "mesh_builder.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -10,12 +11,16 @@ constexpr uint8_t kHasNormal = 1, kHasUV = 2;
 
 bool is_finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// Exactly zero area in double precision: collinear or coincident corners.
-bool has_zero_area(const Vec3& a, const Vec3& b, const Vec3& c) {
+// (b - a) x (c - a) in double precision.
+std::array<double, 3> cross(const Vec3& a, const Vec3& b, const Vec3& c) {
   const double e1x = double(b.x) - a.x, e1y = double(b.y) - a.y, e1z = double(b.z) - a.z;
   const double e2x = double(c.x) - a.x, e2y = double(c.y) - a.y, e2z = double(c.z) - a.z;
-  const double nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
-  return nx == 0 && ny == 0 && nz == 0;
+  return {e1y * e2z - e1z * e2y, e1z * e2x - e1x * e2z, e1x * e2y - e1y * e2x};
+}
+
+// Exactly zero area in double precision: collinear or coincident corners.
+bool has_zero_area(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return cross(a, b, c) == std::array<double, 3>{0, 0, 0};
 }
 
 }  // namespace
@@ -60,7 +65,7 @@ void MeshBuilder::finish(Scene& scene) {
     }
     index = new_index[index];
   }
-  const bool keep_normals = kept > 0 && (all_attributes & kHasNormal);
+  const bool keep_normals = any_attributes & kHasNormal;
   const bool keep_uvs = any_attributes & kHasUV;
   scene.positions.assign(kept, Vec3{});
   if (keep_normals) scene.normals.assign(kept, Vec3{});
@@ -74,6 +79,39 @@ void MeshBuilder::finish(Scene& scene) {
   }
   scene.indices = std::move(indices_);
   scene.material_ids = std::move(material_ids_);
+  if (keep_normals && !(all_attributes & kHasNormal)) fill_missing_normals(scene, new_index);
+}
+
+// Missing normals get the area-weighted average of the normals of the triangles around them
+// (the cross product's length is twice the area); if those cancel out, the first one's normal.
+void MeshBuilder::fill_missing_normals(Scene& scene, const std::vector<uint32_t>& new_index) const {
+  std::vector<bool> missing(scene.positions.size(), false);
+  for (size_t old = 0; old < new_index.size(); ++old)
+    if (new_index[old] != std::numeric_limits<uint32_t>::max() && !(attributes_[old] & kHasNormal))
+      missing[new_index[old]] = true;
+  std::vector<std::array<double, 3>> sum(scene.positions.size(), {0, 0, 0});
+  std::vector<std::array<double, 3>> first(scene.positions.size(), {0, 0, 0});
+  for (size_t t = 0; t < scene.indices.size(); t += 3) {
+    const Vec3 &a = scene.positions[scene.indices[t]], &b = scene.positions[scene.indices[t + 1]],
+               &c = scene.positions[scene.indices[t + 2]];
+    const std::array<double, 3> normal = cross(a, b, c);
+    for (int corner = 0; corner < 3; ++corner) {
+      const uint32_t v = scene.indices[t + corner];
+      if (!missing[v]) continue;
+      if (sum[v] == std::array<double, 3>{0, 0, 0}) first[v] = normal;
+      for (int axis = 0; axis < 3; ++axis) sum[v][axis] += normal[axis];
+    }
+  }
+  for (size_t v = 0; v < missing.size(); ++v) {
+    if (!missing[v]) continue;
+    std::array<double, 3> n = sum[v];
+    double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(length > 0)) {
+      n = first[v];
+      length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    }
+    scene.normals[v] = {float(n[0] / length), float(n[1] / length), float(n[2] / length)};
+  }
 }
 
 }  // namespace kdray

@@ -21,12 +21,14 @@ class MeshBuilder {
   // Counts the triangle as a source triangle and keeps it unless it must be dropped.
   void add_triangle(uint32_t a, uint32_t b, uint32_t c, uint32_t material);
 
-  // Moves the kept triangles into `scene`, keeping only referenced vertices. Normals are
-  // kept only when every kept vertex has one (a made-up normal would shade wrongly); UVs are
-  // kept when any kept vertex has one, the others get (0, 0).
+  // Moves the kept triangles into `scene`, keeping only referenced vertices. Normals are kept
+  // when any kept vertex has one; vertices without get the area-weighted normal of the
+  // triangles around them. UVs are kept when any kept vertex has one; the others get (0, 0).
   void finish(Scene& scene);
 
  private:
+  void fill_missing_normals(Scene& scene, const std::vector<uint32_t>& new_index) const;
+
   ImportStats& stats_;
   std::vector<Vec3> positions_;
   std::vector<Vec3> normals_;

@@ -1,82 +1,69 @@
 #include "texture_decoder.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include "../texture_codec/texture_codec.h"
 
-#include <algorithm>
-#include <cmath>
-#include <memory>
+#include <dlfcn.h>
+
+#include <cstdlib>
+#include <mutex>
 
 namespace kdray {
 namespace {
 
-// Larger images are refused rather than allocated (256 MiB of RGBA).
-constexpr uint64_t kMaxTexturePixels = uint64_t(1) << 26;
+struct LoadedCodec {
+  const TextureCodec* codec = nullptr;
+  std::string problem;  // why it could not be loaded
+};
 
-float linear_to_srgb(float value) {
-  value = std::clamp(value, 0.0f, 1.0f);
-  return value <= 0.0031308f ? 12.92f * value : 1.055f * std::pow(value, 1.0f / 2.4f) - 0.055f;
+// Loaded once and kept for the life of the process. KDRAY_TEXTURE_CODEC overrides the
+// build-tree path compiled in by CMake.
+const LoadedCodec& loaded_codec() {
+  static LoadedCodec loaded;
+  static std::once_flag once;
+  std::call_once(once, [] {
+    const char* override_path = std::getenv("KDRAY_TEXTURE_CODEC");
+    const char* path = override_path != nullptr ? override_path : KDRAY_TEXTURE_CODEC_PATH;
+    void* module = ::dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    if (module == nullptr) {
+      loaded.problem = std::string("texture decoding is unavailable: ") + ::dlerror();
+      return;
+    }
+    using Entry = const TextureCodec* (*)();
+    auto entry = reinterpret_cast<Entry>(::dlsym(module, "kdray_texture_codec"));
+    if (entry == nullptr) {
+      loaded.problem = std::string("texture decoding is unavailable: ") + path + " has no kdray_texture_codec";
+      return;
+    }
+    loaded.codec = entry();
+  });
+  return loaded;
 }
 
-uint8_t to_byte(float value) { return static_cast<uint8_t>(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f)); }
-
-std::optional<Texture> decode(OIIO::ImageInput* input, const std::string& name, std::string& problem) {
-  const OIIO::ImageSpec& spec = input->spec();
-  const uint64_t pixels = uint64_t(std::max(spec.width, 0)) * uint64_t(std::max(spec.height, 0));
-  if (pixels == 0 || spec.nchannels <= 0 || pixels > kMaxTexturePixels) {
-    problem = "unsupported image size " + std::to_string(spec.width) + "x" + std::to_string(spec.height);
+template <typename Decode>
+std::optional<Texture> with_codec(std::string& problem, Decode decode) {
+  const LoadedCodec& loaded = loaded_codec();
+  if (loaded.codec == nullptr) {
+    problem = loaded.problem;
     return std::nullopt;
   }
-  const int channels = spec.nchannels;
-  std::vector<float> values(pixels * channels);
-  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, values.data())) {
-    problem = input->geterror();
-    return std::nullopt;
-  }
-  // Float formats (EXR, HDR) hold linear values; 8- and 16-bit images are already sRGB-encoded.
-  const bool linear = spec.format.is_floating_point() ||
-                      OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "linear");
-  const int alpha_channel = spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 4 ? 3 : (channels == 2 ? 1 : -1));
   Texture texture;
-  texture.name = name;
-  texture.width = static_cast<uint32_t>(spec.width);
-  texture.height = static_cast<uint32_t>(spec.height);
-  texture.rgba.resize(pixels * 4);
-  for (uint64_t p = 0; p < pixels; ++p) {
-    const float* in = &values[p * channels];
-    const bool grey = channels < 3;
-    float rgb[3] = {in[0], grey ? in[0] : in[1], grey ? in[0] : in[2]};
-    uint8_t* out = &texture.rgba[p * 4];
-    for (int c = 0; c < 3; ++c) out[c] = to_byte(linear ? linear_to_srgb(rgb[c]) : rgb[c]);
-    out[3] = alpha_channel >= 0 ? to_byte(in[alpha_channel]) : 255;
-  }
+  if (!decode(*loaded.codec, texture)) return std::nullopt;
   return texture;
 }
 
 }  // namespace
 
 std::optional<Texture> decode_texture_file(const std::string& path, std::string& problem) {
-  auto input = OIIO::ImageInput::open(path);
-  if (!input) {
-    problem = OIIO::geterror();
-    if (problem.empty()) problem = "cannot open";
-    return std::nullopt;
-  }
-  return decode(input.get(), path, problem);
+  return with_codec(problem, [&](const TextureCodec& codec, Texture& texture) {
+    return codec.decode_file(path, texture, problem);
+  });
 }
 
 std::optional<Texture> decode_texture_memory(const std::string& name, const void* data, size_t size,
                                              const std::string& format_hint, std::string& problem) {
-  OIIO::Filesystem::IOMemReader reader(const_cast<void*>(data), size);
-  OIIO::ImageSpec config;
-  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &reader);
-  auto input = OIIO::ImageInput::open("embedded." + (format_hint.empty() ? std::string("png") : format_hint), &config);
-  if (!input) {
-    problem = OIIO::geterror();
-    if (problem.empty()) problem = "cannot decode";
-    return std::nullopt;
-  }
-  return decode(input.get(), name, problem);
+  return with_codec(problem, [&](const TextureCodec& codec, Texture& texture) {
+    return codec.decode_memory(name, data, size, format_hint, texture, problem);
+  });
 }
 
 }  // namespace kdray

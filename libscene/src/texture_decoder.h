@@ -1,4 +1,7 @@
-// Decoding diffuse textures with OpenImageIO into the scene's 8-bit sRGB RGBA form.
+// Decoding diffuse textures into the scene's 8-bit sRGB RGBA form. The decoding itself
+// (OpenImageIO) lives in a module loaded on first use (texture_codec/): OpenImageIO pulls in
+// some 250 shared libraries whose loading costs about 0.25 s, which every tool and every
+// conversion of an untextured asset would otherwise pay at startup.
 #pragma once
 
 #include <kdray/scene.h>

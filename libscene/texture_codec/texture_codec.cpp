@@ -1,0 +1,85 @@
+#include "texture_codec.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+namespace kdray {
+namespace {
+
+// Larger images are refused rather than allocated (256 MiB of RGBA).
+constexpr uint64_t kMaxTexturePixels = uint64_t(1) << 26;
+
+float linear_to_srgb(float value) {
+  value = std::clamp(value, 0.0f, 1.0f);
+  return value <= 0.0031308f ? 12.92f * value : 1.055f * std::pow(value, 1.0f / 2.4f) - 0.055f;
+}
+
+uint8_t to_byte(float value) { return static_cast<uint8_t>(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f)); }
+
+bool decode(OIIO::ImageInput* input, const std::string& name, Texture& texture, std::string& problem) {
+  const OIIO::ImageSpec& spec = input->spec();
+  const uint64_t pixels = uint64_t(std::max(spec.width, 0)) * uint64_t(std::max(spec.height, 0));
+  if (pixels == 0 || spec.nchannels <= 0 || pixels > kMaxTexturePixels) {
+    problem = "unsupported image size " + std::to_string(spec.width) + "x" + std::to_string(spec.height);
+    return false;
+  }
+  const int channels = spec.nchannels;
+  std::vector<float> values(pixels * channels);
+  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, values.data())) {
+    problem = input->geterror();
+    return false;
+  }
+  // Float formats (EXR, HDR) hold linear values; 8- and 16-bit images are already sRGB-encoded.
+  const bool linear = spec.format.is_floating_point() ||
+                      OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "linear");
+  const int alpha_channel = spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 4 ? 3 : (channels == 2 ? 1 : -1));
+  texture.name = name;
+  texture.width = static_cast<uint32_t>(spec.width);
+  texture.height = static_cast<uint32_t>(spec.height);
+  texture.rgba.resize(pixels * 4);
+  for (uint64_t p = 0; p < pixels; ++p) {
+    const float* in = &values[p * channels];
+    const bool grey = channels < 3;
+    float rgb[3] = {in[0], grey ? in[0] : in[1], grey ? in[0] : in[2]};
+    uint8_t* out = &texture.rgba[p * 4];
+    for (int c = 0; c < 3; ++c) out[c] = to_byte(linear ? linear_to_srgb(rgb[c]) : rgb[c]);
+    out[3] = alpha_channel >= 0 ? to_byte(in[alpha_channel]) : 255;
+  }
+  return true;
+}
+
+bool decode_file(const std::string& path, Texture& texture, std::string& problem) {
+  auto input = OIIO::ImageInput::open(path);
+  if (!input) {
+    problem = OIIO::geterror();
+    if (problem.empty()) problem = "cannot open";
+    return false;
+  }
+  return decode(input.get(), path, texture, problem);
+}
+
+bool decode_memory(const std::string& name, const void* data, size_t size, const std::string& format_hint,
+                   Texture& texture, std::string& problem) {
+  OIIO::Filesystem::IOMemReader reader(const_cast<void*>(data), size);
+  OIIO::ImageSpec config;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &reader);
+  auto input = OIIO::ImageInput::open("embedded." + (format_hint.empty() ? std::string("png") : format_hint), &config);
+  if (!input) {
+    problem = OIIO::geterror();
+    if (problem.empty()) problem = "cannot decode";
+    return false;
+  }
+  return decode(input.get(), name, texture, problem);
+}
+
+}  // namespace
+}  // namespace kdray
+
+extern "C" const kdray::TextureCodec* kdray_texture_codec() {
+  static const kdray::TextureCodec codec{kdray::decode_file, kdray::decode_memory};
+  return &codec;
+}

@@ -18,6 +18,9 @@ namespace {
 
 constexpr const char* kSumPrefix = "kdray.sum.";
 
+// OpenEXR stores channels sorted by name; films keep radiance first, then the AOVs.
+const char* const kChannelOrder[] = {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z"};
+
 std::string lower_extension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
@@ -149,8 +152,17 @@ Film read_film_exr(const std::string& path) {
   for (int c = 0; c < spec.nchannels; ++c) {
     const std::string& name = spec.channelnames[size_t(c)];
     if (name.rfind(kSumPrefix, 0) == 0) continue;
-    int hi = channel_index(kSumPrefix + name + ".hi"), lo = channel_index(kSumPrefix + name + ".lo");
-    if (hi < 0 || lo < 0) throw Error(path, "not a kdrender EXR: channel " + name + " has no exact sums to merge");
+    if (std::find(std::begin(kChannelOrder), std::end(kChannelOrder), name) == std::end(kChannelOrder)) {
+      throw Error(path, "not a kdrender EXR: unexpected channel " + name);
+    }
+  }
+  for (const char* name : kChannelOrder) {
+    if (channel_index(name) < 0) continue;
+    int hi = channel_index(std::string(kSumPrefix) + name + ".hi");
+    int lo = channel_index(std::string(kSumPrefix) + name + ".lo");
+    if (hi < 0 || lo < 0) {
+      throw Error(path, std::string("not a kdrender EXR: channel ") + name + " has no exact sums to merge");
+    }
     film.channels.push_back(name);
     hi_index.push_back(hi);
     lo_index.push_back(lo);

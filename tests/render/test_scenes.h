@@ -43,4 +43,72 @@ inline Scene make_inward_cube(const Material& material) {
   return scene;
 }
 
+// Every material and optional attribute the kernels support, in one small closed room: diffuse
+// walls with a checker-textured floor, a one-sided ceiling light, and a box whose faces are a
+// mirror, a rough conductor and glass; per-vertex normals and UVs everywhere.
+inline Scene make_feature_room() {
+  Scene scene;
+  auto material = [&](MaterialType type, Vec3 color) {
+    Material m;
+    m.type = type;
+    m.base_color = color;
+    scene.materials.push_back(m);
+    return static_cast<uint32_t>(scene.materials.size() - 1);
+  };
+  uint32_t wall = material(MaterialType::Diffuse, {0.7f, 0.7f, 0.7f});
+  uint32_t floor = material(MaterialType::Diffuse, {1, 1, 1});
+  scene.materials[floor].diffuse_texture = 0;
+  uint32_t light = material(MaterialType::Emissive, {0.5f, 0.5f, 0.5f});
+  scene.materials[light].emission = {8, 7, 6};
+  uint32_t mirror = material(MaterialType::Mirror, {0.9f, 0.9f, 0.9f});
+  uint32_t metal = material(MaterialType::RoughConductor, {0.9f, 0.6f, 0.3f});
+  scene.materials[metal].roughness = 0.3f;
+  uint32_t glass = material(MaterialType::Dielectric, {1, 1, 1});
+  scene.materials[glass].ior = 1.5f;
+
+  const float s = 1.0f;
+  add_quad(scene, {{{-s, -s, -s}, {-s, -s, s}, {s, -s, s}, {s, -s, -s}}}, floor);
+  add_quad(scene, {{{-s, s, -s}, {s, s, -s}, {s, s, s}, {-s, s, s}}}, wall);
+  add_quad(scene, {{{-s, -s, -s}, {-s, s, -s}, {-s, s, s}, {-s, -s, s}}}, wall);
+  add_quad(scene, {{{s, -s, -s}, {s, -s, s}, {s, s, s}, {s, s, -s}}}, wall);
+  add_quad(scene, {{{-s, -s, -s}, {s, -s, -s}, {s, s, -s}, {-s, s, -s}}}, wall);
+  add_quad(scene, {{{-s, -s, s}, {-s, s, s}, {s, s, s}, {s, -s, s}}}, wall);
+  const float l = 0.3f, y = 0.99f;
+  add_quad(scene, {{{-l, y, -l}, {l, y, -l}, {l, y, l}, {-l, y, l}}}, light);  // faces down
+  scene.emissive_triangles = {12, 13};
+  const float b = 0.35f, lo = -1.0f, hi = -0.2f;  // an outward-facing box on the floor
+  add_quad(scene, {{{-b, hi, -b}, {-b, hi, b}, {b, hi, b}, {b, hi, -b}}}, mirror);
+  add_quad(scene, {{{-b, lo, b}, {b, lo, b}, {b, hi, b}, {-b, hi, b}}}, glass);
+  add_quad(scene, {{{b, lo, -b}, {b, hi, -b}, {b, hi, b}, {b, lo, b}}}, metal);
+  add_quad(scene, {{{-b, lo, -b}, {-b, lo, b}, {-b, hi, b}, {-b, hi, -b}}}, glass);
+  add_quad(scene, {{{-b, lo, -b}, {-b, hi, -b}, {b, hi, -b}, {b, lo, -b}}}, metal);
+
+  // Flat per-vertex normals (from each quad's winding) and a unit UV square per quad.
+  for (size_t t = 0; t < scene.triangle_count(); t += 2) {
+    const Vec3& p0 = scene.positions[scene.indices[3 * t]];
+    const Vec3& p1 = scene.positions[scene.indices[3 * t + 1]];
+    const Vec3& p2 = scene.positions[scene.indices[3 * t + 2]];
+    Vec3 e1{p1.x - p0.x, p1.y - p0.y, p1.z - p0.z}, e2{p2.x - p0.x, p2.y - p0.y, p2.z - p0.z};
+    Vec3 n{e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
+    for (int corner = 0; corner < 4; ++corner) scene.normals.push_back(n);
+    scene.uvs.insert(scene.uvs.end(), {{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  }
+  Texture checker;
+  checker.name = "checker";
+  checker.width = 4;
+  checker.height = 4;
+  for (uint32_t i = 0; i < 16; ++i) {
+    uint8_t v = ((i % 4) + (i / 4)) % 2 ? 230 : 40;
+    checker.rgba.insert(checker.rgba.end(), {v, uint8_t(v / 2), 40, 255});
+  }
+  scene.textures.push_back(checker);
+
+  Camera camera;
+  camera.position = {0, 0, 0.95f};
+  camera.target = {0, -0.3f, 0};
+  camera.vertical_fov_degrees = 70.0f;
+  scene.cameras.push_back(camera);
+  return scene;
+}
+
 }  // namespace kdray::test

@@ -1,0 +1,129 @@
+// kdrender's command line: outputs, JSON, merging, the program cache, and every refusal
+// (stale tree, damaged file, bad arguments) with its exit code and message.
+#include "render_fixture.h"
+#include "test_scenes.h"
+
+#include <kdray/image_io.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+namespace kdray {
+namespace {
+
+namespace fs = std::filesystem;
+
+class KdrenderCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(test::make_temp_dir("kdrender-cli"));
+    auto files = test::prepare_cornell_files(*dir_);
+    scene_ = files.first;
+    tree_ = files.second;
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+  // kdrender with its own program cache directory, so the cold and warm builds are this test's.
+  static test::CommandResult kdrender(const std::string& arguments) {
+    std::string cache = "KDRAY_CACHE_DIR=" + test::quoted((*dir_ / "cache").string()) + " ";
+    return test::run_command(cache + test::quoted(test::tool_path("kdrender")) + " " + arguments);
+  }
+  static std::string cornell(const std::string& output, const std::string& extra) {
+    return test::quoted(scene_) + " " + test::quoted(tree_) + " -o " + test::quoted(output) +
+           " --width 16 --height 16 --cam-pos 278,273,-800 --cam-target 278,273,0 --fov 39.3077 " + extra;
+  }
+  static std::string path(const std::string& name) { return (*dir_ / name).string(); }
+
+  static fs::path* dir_;
+  static std::string scene_, tree_;
+};
+fs::path* KdrenderCli::dir_ = nullptr;
+std::string KdrenderCli::scene_, KdrenderCli::tree_;
+
+TEST_F(KdrenderCli, RendersPngAndReportsJsonWithAWarmSecondBuild) {
+  test::CommandResult first = kdrender(cornell(path("a.png"), "--spp 2 --json"));
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  test::CommandResult second = kdrender(cornell(path("b.png"), "--spp 2 --json"));
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  nlohmann::json report = nlohmann::json::parse(second.output);
+  EXPECT_EQ(report["build_source"], "disk cache");
+  EXPECT_EQ(report["spp"], 2);
+  EXPECT_GT(report["rays_per_second"].get<double>(), 0.0);
+  EXPECT_GT(report["samples_per_second"].get<double>(), 0.0);
+  for (const char* key : {"load_seconds", "build_seconds", "render_seconds"}) EXPECT_TRUE(report.contains(key)) << key;
+  EXPECT_TRUE(fs::exists(path("a.png")));
+  EXPECT_TRUE(fs::exists(path("b.png")));
+}
+
+TEST_F(KdrenderCli, MergedRangesEqualOneRender) {
+  ASSERT_EQ(kdrender(cornell(path("whole.exr"), "--spp 4 --quiet")).exit_code, 0);
+  ASSERT_EQ(kdrender(cornell(path("low.exr"), "--spp 2 --quiet")).exit_code, 0);
+  ASSERT_EQ(kdrender(cornell(path("high.exr"), "--spp 2 --sample-offset 2 --quiet")).exit_code, 0);
+  test::CommandResult merge =
+      kdrender("--merge " + test::quoted(path("high.exr")) + " " + test::quoted(path("low.exr")) + " -o " +
+               test::quoted(path("merged.exr")) + " --quiet");
+  ASSERT_EQ(merge.exit_code, 0) << merge.output;
+  Film whole = read_film_exr(path("whole.exr")), merged = read_film_exr(path("merged.exr"));
+  EXPECT_EQ(merged.sums, whole.sums);
+  EXPECT_EQ(merged.sample_count, 4u);
+  test::CommandResult gap = kdrender("--merge " + test::quoted(path("high.exr")) + " " +
+                                     test::quoted(path("high.exr")) + " -o " + test::quoted(path("gap.exr")));
+  EXPECT_EQ(gap.exit_code, 1);
+  EXPECT_NE(gap.output.find("not adjacent"), std::string::npos) << gap.output;
+  EXPECT_FALSE(fs::exists(path("gap.exr")));
+}
+
+TEST_F(KdrenderCli, RefusesAStaleTree) {
+  Material grey;
+  Scene other = test::make_inward_cube(grey);
+  KdTree other_tree = test::tree_for(other);
+  write_tree(path("other.kdtree"), other_tree);
+  test::CommandResult run = kdrender(test::quoted(scene_) + " " + test::quoted(path("other.kdtree")) + " -o " +
+                                     test::quoted(path("stale.png")));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.output.find("kdrender: error:"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("stale"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(path("stale.png")));
+}
+
+TEST_F(KdrenderCli, RefusesADamagedScene) {
+  std::string damaged = path("damaged.kdscene");
+  fs::copy_file(scene_, damaged, fs::copy_options::overwrite_existing);
+  {
+    std::fstream file(damaged, std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(static_cast<std::streamoff>(fs::file_size(damaged) / 2));
+    file.put('\x5a');
+  }
+  test::CommandResult run = kdrender(test::quoted(damaged) + " " + test::quoted(tree_) + " -o " +
+                                     test::quoted(path("damaged.png")));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.output.find(damaged), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(path("damaged.png")));
+}
+
+TEST_F(KdrenderCli, BadArgumentsExitWithUsageStatus) {
+  const char* bad[] = {"--spp 0", "--width 0", "--aov shadows", "--cam-pos 1,2", "--max-bounces 5000",
+                       "--frobnicate", "--cam-pos 0,0,0"};
+  for (const char* arguments : bad) {
+    test::CommandResult run = kdrender(cornell(path("bad.exr"), arguments));
+    EXPECT_EQ(run.exit_code, 2) << arguments << ": " << run.output;
+    EXPECT_NE(run.output.find("kdrender: error:"), std::string::npos) << run.output;
+  }
+  EXPECT_EQ(kdrender(test::quoted(scene_) + " " + test::quoted(tree_)).exit_code, 2);  // no -o
+  EXPECT_EQ(kdrender(cornell(path("bad.tiff"), "")).exit_code, 2);
+  EXPECT_FALSE(fs::exists(path("bad.exr")));
+}
+
+TEST_F(KdrenderCli, ListsDevices) {
+  test::CommandResult run = kdrender("--device list");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("[default]"), std::string::npos) << run.output;
+  EXPECT_EQ(kdrender(cornell(path("nodevice.png"), "--device 99")).exit_code, 1);
+}
+
+}  // namespace
+}  // namespace kdray

@@ -1,0 +1,90 @@
+// The OpenCL traversal kernel returns exactly the CPU traversal's hits (same shared code).
+#include "render_fixture.h"
+
+#include <kdray/import.h>
+#include <kdray/ray_sets.h>
+#include <kdray/trace_opencl.h>
+#include <kdray/traverse.h>
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+namespace kdray {
+namespace {
+
+size_t count_differences(const std::vector<HitRecord>& a, const std::vector<HitRecord>& b) {
+  size_t differences = 0;
+  for (size_t i = 0; i < a.size(); ++i) differences += std::memcmp(&a[i], &b[i], sizeof(HitRecord)) != 0;
+  return differences;
+}
+
+class TraceKernel : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    std::string path = std::string(KDRAY_CORPUS_DIR) + "/bunny/stanford-bunny.obj";
+    if (!std::filesystem::exists(path)) return;
+    scene_ = new Scene(import_scene(path, ImportOptions{}));
+    tree_ = new KdTree(test::tree_for(*scene_));
+  }
+  static void TearDownTestSuite() {
+    delete tree_;
+    delete scene_;
+    tree_ = nullptr;
+    scene_ = nullptr;
+  }
+  void SetUp() override {
+    std::string path;
+    KDRAY_CORPUS_FILE(path, "bunny/stanford-bunny.obj");
+  }
+  static Scene* scene_;
+  static KdTree* tree_;
+};
+Scene* TraceKernel::scene_ = nullptr;
+KdTree* TraceKernel::tree_ = nullptr;
+
+TEST_F(TraceKernel, HitsEqualTheCpuTraversalOnTheBunny) {
+  std::vector<RayRecord> rays = camera_rays(*scene_, 256, 256);                  // 65,536
+  std::vector<RayRecord> random = random_rays(tree_->bounds, 40000, 11);
+  std::vector<RayRecord> hard = hard_case_rays(*scene_, *tree_, 40000, 12);
+  rays.insert(rays.end(), random.begin(), random.end());
+  rays.insert(rays.end(), hard.begin(), hard.end());
+  ASSERT_GE(rays.size(), 100000u);
+  std::vector<HitRecord> cpu;
+  trace_closest(*scene_, *tree_, rays, cpu);
+  std::vector<HitRecord> device = trace_rays_opencl(*scene_, *tree_, rays, DeviceSelection{});
+  ASSERT_EQ(device.size(), rays.size());
+  size_t hits = 0;
+  for (const HitRecord& hit : cpu) hits += hit.triangle != KD_NO_HIT;
+  EXPECT_GT(hits, rays.size() / 4);
+  EXPECT_EQ(count_differences(cpu, device), 0u);
+}
+
+TEST_F(TraceKernel, ShortStackOfOneGivesTheSameHits) {
+  std::vector<RayRecord> rays = random_rays(tree_->bounds, 20000, 21);
+  std::vector<RayRecord> hard = hard_case_rays(*scene_, *tree_, 10000, 22);
+  rays.insert(rays.end(), hard.begin(), hard.end());
+  std::vector<HitRecord> cpu;
+  trace_closest(*scene_, *tree_, rays, cpu, TraceOptions{0, TraversalStack::Depth1});
+  DeviceSelection depth_one;
+  depth_one.short_stack_size = 1;
+  EXPECT_EQ(count_differences(cpu, trace_rays_opencl(*scene_, *tree_, rays, depth_one)), 0u);
+}
+
+TEST(TraceKernelEdges, NoRaysGiveNoHits) {
+  Scene scene;
+  scene.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  scene.indices = {0, 1, 2};
+  scene.material_ids = {0};
+  scene.materials.resize(1);
+  KdTree tree = test::tree_for(scene);
+  EXPECT_TRUE(trace_rays_opencl(scene, tree, {}, DeviceSelection{}).empty());
+  RayRecord ray{0.25f, 0.25f, 1, 0, 0, -1, 0, 1e30f};
+  std::vector<HitRecord> hits = trace_rays_opencl(scene, tree, {ray}, DeviceSelection{});
+  ASSERT_EQ(hits.size(), 1u);
+  EXPECT_EQ(hits[0].triangle, 0u);
+  EXPECT_FLOAT_EQ(hits[0].t, 1.0f);
+}
+
+}  // namespace
+}  // namespace kdray

@@ -164,9 +164,10 @@ class AssimpConverter {
       converted.position = to_vec3(position);
       converted.target = to_vec3(position + rotation * camera.mLookAt);
       converted.up = normalized(rotation * camera.mUp);
-      // Assimp stores half the horizontal field of view.
-      const float half_horizontal = camera.mHorizontalFOV;
-      const float vertical = camera.mAspect > 0 ? 2 * std::atan(std::tan(half_horizontal) / camera.mAspect) : 2 * half_horizontal;
+      // Assimp documents mHorizontalFOV as half the angle, but its 5.2 glTF and Collada
+      // importers store the full horizontal angle (a glTF yfov of 0.7 with aspect 1 reads 0.7).
+      const float horizontal = camera.mHorizontalFOV;
+      const float vertical = camera.mAspect > 0 ? 2 * std::atan(std::tan(horizontal / 2) / camera.mAspect) : horizontal;
       if (std::isfinite(vertical) && vertical > 0 && vertical < float(M_PI))
         converted.vertical_fov_degrees = vertical * float(180.0 / M_PI);
       scene_.cameras.push_back(converted);

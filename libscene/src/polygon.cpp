@@ -76,7 +76,9 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<Vec3>
     return true;
   };
 
-  size_t at = 0;
+  // Starting at corner 1 and moving forward, a convex polygon comes out as the fan around
+  // corner 0 - the triangles other OBJ readers produce - and concave ones stay correct.
+  size_t at = 1;
   size_t failed_in_a_row = 0;
   while (remaining.size() > 3) {
     const size_t n = remaining.size();
@@ -85,10 +87,8 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<Vec3>
     // so the polygon always yields n - 2 triangles.
     if (is_ear(at) || failed_in_a_row >= n) {
       triangles.push_back({remaining[(at + n - 1) % n], remaining[at], remaining[(at + 1) % n]});
-      remaining.erase(remaining.begin() + at);
+      remaining.erase(remaining.begin() + at);  // `at` now names the next corner
       failed_in_a_row = 0;
-      if (at == 0) at = remaining.size();
-      --at;  // the previous corner may have become an ear
     } else {
       ++at;
       ++failed_in_a_row;

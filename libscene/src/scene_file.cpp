@@ -161,7 +161,12 @@ Scene read_scene(const std::string& path) {
 
   const std::string problem = first_inconsistency(scene);
   if (!problem.empty()) throw Error(path, "inconsistent scene: " + problem);
-  scene.content_hash = contents.header.content_hash;
+  // The checksum covers the payload only: the header's own fields are checked here.
+  if (contents.header.reserved0 != 0 || contents.header.reserved1 != 0) throw Error(path, "reserved header fields are not zero");
+  scene.content_hash = compute_content_hash(scene);
+  if (scene.content_hash != contents.header.content_hash)
+    throw Error(path, "the content hash in the header (" + hash_hex(contents.header.content_hash) +
+                          ") does not match the content (" + hash_hex(scene.content_hash) + ")");
   return scene;
 }
 

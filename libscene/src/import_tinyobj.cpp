@@ -11,6 +11,9 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -83,6 +86,33 @@ class MtlReader : public tinyobj::MaterialReader {
   std::filesystem::path obj_directory_;
   std::filesystem::path directory_;
 };
+
+// tinyobjloader reads `nan` and `inf` coordinates as 0, which would turn a broken vertex into
+// a plausible one. This pass finds the `v` records with a non-finite coordinate (as strtod
+// reads them) and makes those vertices NaN again, so the mesh builder drops their triangles.
+void restore_non_finite_vertices(const std::string& path, tinyobj::attrib_t& attrib) {
+  std::ifstream file(path, std::ios::binary);
+  std::string line;
+  size_t vertex = 0;
+  while (std::getline(file, line)) {
+    const size_t start = line.find_first_not_of(" \t");
+    if (start == std::string::npos || line[start] != 'v' || start + 1 >= line.size() ||
+        (line[start + 1] != ' ' && line[start + 1] != '\t'))
+      continue;
+    const char* cursor = line.c_str() + start + 1;
+    bool finite = true;
+    for (int axis = 0; axis < 3; ++axis) {
+      char* end = nullptr;
+      const double value = std::strtod(cursor, &end);
+      if (end == cursor) break;
+      finite = finite && std::isfinite(value);
+      cursor = end;
+    }
+    if (!finite && 3 * vertex + 2 < attrib.vertices.size())
+      for (int axis = 0; axis < 3; ++axis) attrib.vertices[3 * vertex + axis] = std::numeric_limits<float>::quiet_NaN();
+    ++vertex;
+  }
+}
 
 class ObjConverter {
  public:
@@ -191,6 +221,7 @@ Scene import_with_tinyobj(const std::string& path) {
     end = std::min(warnings.find('\n', start), warnings.size());
     if (end > start) scene.import_stats.warnings.push_back("tinyobjloader: " + warnings.substr(start, end - start));
   }
+  restore_non_finite_vertices(path, obj.attrib);
   ObjConverter converter(path, obj, mtl_reader.directory(), scene);
   for (const tinyobj::shape_t& shape : obj.shapes) converter.add_shape(shape);
   converter.finish();

@@ -13,7 +13,7 @@
 
 namespace fs = std::filesystem;
 using kdray::test::constant_pixels;
-using kdray::test::quoted;
+using kdray::test::shell_quoted;
 using kdray::test::run_command;
 using kdray::test::ToolRun;
 
@@ -35,8 +35,8 @@ class KdCompareCli : public ::testing::Test {
   fs::path path(const std::string& name) const { return directory_ / name; }
 
   ToolRun kdcompare(const std::string& test, const std::string& reference, const std::string& options = "") const {
-    return run_command(quoted(kdray::test::tool_path("kdcompare")) + " " + quoted(path(test).string()) + " " +
-                       quoted(path(reference).string()) + " " + options);
+    return run_command(shell_quoted(kdray::test::tool_path("kdcompare")) + " " + shell_quoted(path(test).string()) + " " +
+                       shell_quoted(path(reference).string()) + " " + options);
   }
 
   fs::path directory_;
@@ -95,18 +95,18 @@ TEST_F(KdCompareCli, UnreadableFileExitsFour) {
   { std::ofstream(path("garbage.exr")) << "not an image"; }
   EXPECT_EQ(kdcompare("test.exr", "missing.exr").exit_code, 4);
   EXPECT_EQ(kdcompare("garbage.exr", "reference.exr").exit_code, 4);
-  EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--heatmap " + quoted(path("no-dir/map.png").string())).exit_code, 4);
+  EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--heatmap " + shell_quoted(path("no-dir/map.png").string())).exit_code, 4);
 }
 
 TEST_F(KdCompareCli, BadArgumentsExitTwo) {
   EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--threshold rmse").exit_code, 2);
   EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--threshold speed=1").exit_code, 2);
   EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--threshold rmse=abc").exit_code, 2);
-  EXPECT_EQ(run_command(quoted(kdray::test::tool_path("kdcompare")) + " only-one.exr").exit_code, 2);
+  EXPECT_EQ(run_command(shell_quoted(kdray::test::tool_path("kdcompare")) + " only-one.exr").exit_code, 2);
 }
 
 TEST_F(KdCompareCli, HeatmapIsWrittenAsAPng) {
-  const ToolRun run = kdcompare("test.exr", "reference.exr", "--heatmap " + quoted(path("map.png").string()));
+  const ToolRun run = kdcompare("test.exr", "reference.exr", "--heatmap " + shell_quoted(path("map.png").string()));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   auto input = OIIO::ImageInput::open(path("map.png").string());
   ASSERT_TRUE(input);
@@ -118,7 +118,7 @@ TEST_F(KdCompareCli, HeatmapIsWrittenAsAPng) {
 }
 
 TEST_F(KdCompareCli, HelpDocumentsExitCodesAndPsnrPeak) {
-  const ToolRun run = run_command(quoted(kdray::test::tool_path("kdcompare")) + " --help");
+  const ToolRun run = run_command(shell_quoted(kdray::test::tool_path("kdcompare")) + " --help");
   ASSERT_EQ(run.exit_code, 0);
   EXPECT_NE(run.output.find("Exit codes"), std::string::npos);
   EXPECT_NE(run.output.find("peak"), std::string::npos);

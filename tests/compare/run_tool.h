@@ -14,7 +14,7 @@ struct ToolRun {
   std::string output;  // stdout; stderr goes to the test log
 };
 
-// `command` is passed to /bin/sh; quote paths with quoted().
+// `command` is passed to /bin/sh; quote paths with shell_quoted().
 inline ToolRun run_command(const std::string& command) {
   ToolRun run;
   FILE* pipe = popen(command.c_str(), "r");
@@ -27,7 +27,7 @@ inline ToolRun run_command(const std::string& command) {
   return run;
 }
 
-inline std::string quoted(const std::string& text) {
+inline std::string shell_quoted(const std::string& text) {
   std::string result = "'";
   for (char c : text) result += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return result + "'";

@@ -1,0 +1,32 @@
+# Speed against error (scripts/speed_vs_error.py), included by samples/Makefile: for each sample
+# scene, the error against a converged reference at 1, 2, 4, ... REPORT_SPP samples per pixel,
+# with cumulative render seconds, as a CSV and a log-log plot of relMSE against seconds.
+#   make -C samples BUILD=<build dir> OUT=<output dir> report
+#     ->  $(OUT)/report/<scene>.csv and <scene>.png
+# The reference (REPORT_REFERENCE_SPP samples, seed 1; the series uses seed 0) is rendered once
+# and kept in $(OUT)/report until the scene or tree changes. Smaller settings for a quick look:
+#   make -C samples report REPORT_SIZE=64 REPORT_SPP=64 REPORT_REFERENCE_SPP=1024
+REPORT_SCENES ?= cornell-box
+REPORT_SIZE ?= 256
+REPORT_SPP ?= 256
+REPORT_REFERENCE_SPP ?= 4096
+REPORT_BOUNCES ?= 8
+KDCOMPARE = $(BUILD)/tools/kdcompare/kdcompare
+# Debian's matplotlib belongs to /usr/bin/python3 (GUIDE section 9).
+SPEED_VS_ERROR = /usr/bin/python3 ../scripts/speed_vs_error.py
+
+# kdrender options per scene (the camera, where the scene file has none).
+REPORT_VIEW_cornell-box = $(CORNELL_VIEW)
+
+.PHONY: report
+report: $(foreach scene,$(REPORT_SCENES),$(OUT)/report/$(scene).csv $(OUT)/report/$(scene).png)
+
+$(OUT)/report/%.csv: $(OUT)/%.kdscene $(OUT)/%.kdtree $(KDRENDER) $(KDCOMPARE) ../scripts/speed_vs_error.py
+	mkdir -p $(@D)
+	$(SPEED_VS_ERROR) run $(OUT)/$*.kdscene $(OUT)/$*.kdtree --csv $@ \
+	  --width $(REPORT_SIZE) --height $(REPORT_SIZE) --max-spp $(REPORT_SPP) --max-bounces $(REPORT_BOUNCES) \
+	  --reference-spp $(REPORT_REFERENCE_SPP) --kdrender $(KDRENDER) --kdcompare $(KDCOMPARE) \
+	  -- $(REPORT_VIEW_$*)
+
+$(OUT)/report/%.png: $(OUT)/report/%.csv
+	$(SPEED_VS_ERROR) plot $< -o $@ --title "$*: relMSE against render time ($(REPORT_SIZE)x$(REPORT_SIZE), $(REPORT_BOUNCES) bounces)"

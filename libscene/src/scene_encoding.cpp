@@ -192,11 +192,12 @@ std::string encode_materials(const std::vector<Material>& materials) { return en
 std::string encode_cameras(const std::vector<Camera>& cameras) { return encode_list(cameras); }
 std::string encode_textures(const std::vector<Texture>& textures) { return encode_list(textures); }
 
-std::string encode_import_stats(const ImportStats& stats) {
+std::string encode_scene_info(const SceneInfo& info) {
   std::ostringstream stream(std::ios::binary);
   {
     OutputArchive archive(stream);
-    put(archive, stats);
+    archive(info.content_hash);
+    put(archive, info.import_stats);
   }
   return stream.str();
 }
@@ -211,10 +212,12 @@ std::vector<Texture> decode_textures(const std::string& path, const std::vector<
   return decode_list<Texture>(path, "textures", bytes, kMinTextureBytes, get_texture);
 }
 
-ImportStats decode_import_stats(const std::string& path, const std::vector<char>& bytes) {
+SceneInfo decode_scene_info(const std::string& path, const std::vector<char>& bytes) {
   try {
     Decoder decoder(path, "scene info", bytes);
-    ImportStats stats;
+    SceneInfo info;
+    decoder.get(info.content_hash);
+    ImportStats& stats = info.import_stats;
     stats.source_file = decoder.get_string();
     stats.importer = decoder.get_string();
     decoder.get(stats.source_triangles, stats.dropped_degenerate, stats.dropped_non_finite, stats.ignored_points,
@@ -222,7 +225,7 @@ ImportStats decode_import_stats(const std::string& path, const std::vector<char>
     stats.warnings.resize(decoder.get_count(8));
     for (std::string& warning : stats.warnings) warning = decoder.get_string();
     decoder.finish();
-    return stats;
+    return info;
   } catch (const cereal::Exception&) {
     throw Error(path, "malformed scene info section: it ends early");
   }

@@ -22,13 +22,19 @@ uint64_t content_hash(const Scene& scene, const EncodedParts& parts);
 std::string encode_materials(const std::vector<Material>& materials);
 std::string encode_cameras(const std::vector<Camera>& cameras);
 std::string encode_textures(const std::vector<Texture>& textures);
-std::string encode_import_stats(const ImportStats& stats);
+// Scene info: the content hash again (inside the checksummed payload, so a damaged header
+// hash is caught without recomputing it) and the import statistics.
+struct SceneInfo {
+  uint64_t content_hash = 0;
+  ImportStats import_stats;
+};
+std::string encode_scene_info(const SceneInfo& info);
 
 // Decoders throw kdray::Error naming `path` when the bytes are malformed. Every element
 // count is checked against the bytes that remain before anything is allocated.
 std::vector<Material> decode_materials(const std::string& path, const std::vector<char>& bytes);
 std::vector<Camera> decode_cameras(const std::string& path, const std::vector<char>& bytes);
 std::vector<Texture> decode_textures(const std::string& path, const std::vector<char>& bytes);
-ImportStats decode_import_stats(const std::string& path, const std::vector<char>& bytes);
+SceneInfo decode_scene_info(const std::string& path, const std::vector<char>& bytes);
 
 }  // namespace kdray::encoding

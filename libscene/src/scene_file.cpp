@@ -117,7 +117,8 @@ void write_scene(const std::string& path, const Scene& scene) {
   const std::string problem = first_inconsistency(scene);
   if (!problem.empty()) throw Error(path, "refusing to write an inconsistent scene: " + problem);
   const encoding::EncodedParts parts = encoding::encode_parts(scene);
-  const std::string info = encoding::encode_import_stats(scene.import_stats);
+  const uint64_t content_hash = encoding::content_hash(scene, parts);
+  const std::string info = encoding::encode_scene_info({content_hash, scene.import_stats});
 
   std::vector<SectionData> sections = {
       array_section(kScenePositions, scene.positions),
@@ -132,7 +133,7 @@ void write_scene(const std::string& path, const Scene& scene) {
   if (!scene.emissive_triangles.empty()) sections.push_back(array_section(kSceneEmissive, scene.emissive_triangles));
   sections.push_back(text_section(kSceneInfo, info));
 
-  ContainerHeaderInfo header{kSceneMagic, kSceneVersion, flags_of(scene), encoding::content_hash(scene, parts)};
+  ContainerHeaderInfo header{kSceneMagic, kSceneVersion, flags_of(scene), content_hash};
   write_container(path, header, sections);
 }
 
@@ -157,16 +158,19 @@ Scene read_scene(const std::string& path) {
   scene.materials = encoding::decode_materials(path, collector.materials);
   scene.cameras = encoding::decode_cameras(path, collector.cameras);
   if (collector.has(kSceneTextures)) scene.textures = encoding::decode_textures(path, collector.textures);
-  scene.import_stats = encoding::decode_import_stats(path, collector.info);
+  encoding::SceneInfo info = encoding::decode_scene_info(path, collector.info);
+  scene.import_stats = std::move(info.import_stats);
 
   const std::string problem = first_inconsistency(scene);
   if (!problem.empty()) throw Error(path, "inconsistent scene: " + problem);
   // The checksum covers the payload only: the header's own fields are checked here.
   if (contents.header.reserved0 != 0 || contents.header.reserved1 != 0) throw Error(path, "reserved header fields are not zero");
-  scene.content_hash = compute_content_hash(scene);
-  if (scene.content_hash != contents.header.content_hash)
+  // The header's hash is outside the checksum; its copy in scene info is inside. Recomputing
+  // it would cost another pass over the arrays, and the checksummed copy is what was written.
+  if (info.content_hash != contents.header.content_hash)
     throw Error(path, "the content hash in the header (" + hash_hex(contents.header.content_hash) +
-                          ") does not match the content (" + hash_hex(scene.content_hash) + ")");
+                          ") does not match the one recorded in the scene info (" + hash_hex(info.content_hash) + ")");
+  scene.content_hash = info.content_hash;
   return scene;
 }
 

@@ -13,7 +13,11 @@ namespace {
 using kdray::ImportStats;
 using kdray::Scene;
 
-nlohmann::json summary_json(const Scene& scene, const std::string& output, double seconds) {
+struct Timings {
+  double import_seconds, write_seconds;
+};
+
+nlohmann::json summary_json(const Scene& scene, const std::string& output, const Timings& timings) {
   const ImportStats& stats = scene.import_stats;
   const kdray::Bounds bounds = kdray::scene_bounds(scene);
   return {
@@ -36,13 +40,15 @@ nlohmann::json summary_json(const Scene& scene, const std::string& output, doubl
       {"bounds", {{"min", {bounds.min.x, bounds.min.y, bounds.min.z}}, {"max", {bounds.max.x, bounds.max.y, bounds.max.z}}}},
       {"content_hash", kdray::hash_hex(scene.content_hash)},
       {"warnings", stats.warnings},
-      {"seconds", seconds},
+      {"import_seconds", timings.import_seconds},
+      {"write_seconds", timings.write_seconds},
   };
 }
 
-void print_summary(const Scene& scene, const std::string& output, double seconds) {
+void print_summary(const Scene& scene, const std::string& output, const Timings& timings) {
   const ImportStats& stats = scene.import_stats;
-  std::printf("%s -> %s (%s, %.3f s)\n", stats.source_file.c_str(), output.c_str(), stats.importer.c_str(), seconds);
+  std::printf("%s -> %s (%s, import %.3f s, write %.3f s)\n", stats.source_file.c_str(), output.c_str(),
+              stats.importer.c_str(), timings.import_seconds, timings.write_seconds);
   std::printf("  triangles  %zu kept of %llu", scene.triangle_count(), (unsigned long long)stats.source_triangles);
   if (stats.dropped_degenerate + stats.dropped_non_finite > 0)
     std::printf(" (dropped %llu degenerate, %llu non-finite)", (unsigned long long)stats.dropped_degenerate,
@@ -97,12 +103,14 @@ int main(int argc, char** argv) {
                                                : kdray::Importer::Auto;
     options.up_axis = up_axis == "z" ? kdray::UpAxis::Z : kdray::UpAxis::Y;
     const Scene scene = kdray::import_scene(input, options);
-    kdray::write_scene(output, scene);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const auto imported = std::chrono::steady_clock::now();
+    kdray::write_scene(output, scene);  // includes the fsync that makes the file durable
+    const Timings timings{std::chrono::duration<double>(imported - start).count(),
+                          std::chrono::duration<double>(std::chrono::steady_clock::now() - imported).count()};
     if (json)
-      kdray::tool::print_json(summary_json(scene, output, seconds));
+      kdray::tool::print_json(summary_json(scene, output, timings));
     else if (!quiet)
-      print_summary(scene, output, seconds);
+      print_summary(scene, output, timings);
     return kdray::tool::kExitOk;
   });
 }

@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Scene benchmarks (issue 2): conversion time of two corpus meshes, and the time to load the
+# resulting .kdscene against a plain read of the same bytes. Medians of N runs (default 5).
+# Usage: bench/scene.sh [BUILD_DIR] [N]      (BUILD_DIR defaults to ./build)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build="${1:-build}"
+runs="${2:-5}"
+corpus="${KDRAY_CORPUS:-../shared/corpus}"
+kdconvert="$build/tools/kdconvert/kdconvert"
+kdinfo="$build/tools/kdinfo/kdinfo"
+python=/usr/bin/python3
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+field() { $python -c "import json, sys; print(json.load(sys.stdin)['$1'])"; }
+now() { date +%s.%N; }
+
+echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(date -u +%Y-%m-%d)"
+echo "median of $runs runs; files in the page cache (each command is run once before timing)"
+printf '\n%-28s %10s %10s %10s %10s %12s %12s %7s\n' mesh triangles "wall s" "import s" "write s" "load s" "read s" ratio
+for mesh in bunny/stanford-bunny.obj large/bunny_sub2.ply; do
+  input="$corpus/$mesh"
+  output="$work/$(basename "$mesh").kdscene"
+  "$kdconvert" "$input" "$output" --quiet
+  walls=(); imports=(); writes=(); loads=(); reads=()
+  for ((run = 0; run < runs; ++run)); do
+    start=$(now)
+    summary=$("$kdconvert" "$input" "$output" --json)
+    walls+=("$(echo "$(now) - $start" | bc -l)")
+    imports+=("$(echo "$summary" | field import_seconds)")
+    writes+=("$(echo "$summary" | field write_seconds)")
+    # kdinfo's load_seconds times read_scene: open, validate, checksum, copy into the arrays,
+    # check every index and recompute the content hash.
+    loads+=("$("$kdinfo" "$output" --json | field load_seconds)")
+    # The plain read: the same bytes into one buffer, nothing checked.
+    reads+=("$($python -c "
+import time, sys
+start = time.perf_counter()
+with open(sys.argv[1], 'rb') as f: f.read()
+print(time.perf_counter() - start)" "$output")")
+  done
+  triangles=$("$kdinfo" "$output" --json | field triangles)
+  wall=$(printf '%s\n' "${walls[@]}" | median)
+  import=$(printf '%s\n' "${imports[@]}" | median)
+  write=$(printf '%s\n' "${writes[@]}" | median)
+  load=$(printf '%s\n' "${loads[@]}" | median)
+  read=$(printf '%s\n' "${reads[@]}" | median)
+  printf '%-28s %10s %10.3f %10.3f %10.3f %12.4f %12.4f %7.2f\n' "$mesh" "$triangles" "$wall" "$import" "$write" \
+    "$load" "$read" "$(echo "$load / $read" | bc -l)"
+done
+echo
+echo "wall: kdconvert INPUT OUT.kdscene --json, whole process; import/write: its own timings"
+echo "load: kdinfo OUT.kdscene --json (load_seconds); read: Python reading the same file; ratio = load / read (goal <= 1.5)"

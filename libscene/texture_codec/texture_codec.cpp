@@ -4,8 +4,12 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <memory>
+
+#include <stdlib.h>
+#include <unistd.h>
 
 namespace kdray {
 namespace {
@@ -62,18 +66,37 @@ bool decode_file(const std::string& path, Texture& texture, std::string& problem
   return decode(input.get(), path, texture, problem);
 }
 
+// Some OpenImageIO readers (TGA in 2.4, for one) cannot read through an in-memory proxy;
+// those get the bytes through a temporary file.
+bool decode_memory_through_file(const std::string& name, const void* data, size_t size, const std::string& extension,
+                                Texture& texture, std::string& problem) {
+  std::string pattern = (std::filesystem::temp_directory_path() / "kdray-texture-XXXXXX").string() + "." + extension;
+  const int fd = ::mkstemps(pattern.data(), int(extension.size() + 1));
+  if (fd < 0) return false;
+  const bool written = ::write(fd, data, size) == ssize_t(size);
+  ::close(fd);
+  bool decoded = false;
+  if (written) {
+    auto input = OIIO::ImageInput::open(pattern);
+    if (input) decoded = decode(input.get(), name, texture, problem);
+    else problem = OIIO::geterror();
+  }
+  ::unlink(pattern.c_str());
+  return decoded;
+}
+
 bool decode_memory(const std::string& name, const void* data, size_t size, const std::string& format_hint,
                    Texture& texture, std::string& problem) {
+  const std::string extension = format_hint.empty() ? std::string("png") : format_hint;
   OIIO::Filesystem::IOMemReader reader(const_cast<void*>(data), size);
   OIIO::ImageSpec config;
   config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &reader);
-  auto input = OIIO::ImageInput::open("embedded." + (format_hint.empty() ? std::string("png") : format_hint), &config);
-  if (!input) {
-    problem = OIIO::geterror();
-    if (problem.empty()) problem = "cannot decode";
-    return false;
-  }
-  return decode(input.get(), name, texture, problem);
+  auto input = OIIO::ImageInput::open("embedded." + extension, &config);
+  if (input) return decode(input.get(), name, texture, problem);
+  OIIO::geterror();  // clears the proxy attempt's message
+  if (decode_memory_through_file(name, data, size, extension, texture, problem)) return true;
+  if (problem.empty()) problem = "cannot decode the embedded " + extension + " image";
+  return false;
 }
 
 }  // namespace

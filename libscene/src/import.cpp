@@ -5,7 +5,6 @@
 #include <kdray/error.h>
 
 #include "importers.h"
-#include "texture_decoder.h"
 
 #include <algorithm>
 #include <cctype>
@@ -111,37 +110,6 @@ Scene import_scene(const std::string& path, const ImportOptions& options) {
   if (scene.cameras.empty()) scene.cameras.push_back(default_camera(scene_bounds(scene)));
   scene.content_hash = compute_content_hash(scene);
   return scene;
-}
-
-template <typename Decode>
-int32_t TextureCache::cached(const std::string& key, Decode decode) {
-  auto found = index_of_.find(key);
-  if (found != index_of_.end()) return found->second;
-  std::string problem;
-  std::optional<Texture> texture = decode(problem);
-  int32_t index = -1;
-  if (texture) {
-    scene_.textures.push_back(std::move(*texture));
-    index = int32_t(scene_.textures.size() - 1);
-  } else {
-    scene_.import_stats.warnings.push_back("texture " + key + " not used: " + problem);
-  }
-  index_of_.emplace(key, index);
-  return index;
-}
-
-int32_t TextureCache::from_file(const std::string& written_path, const std::string& reference) {
-  std::string path = written_path;
-  std::replace(path.begin(), path.end(), '\\', '/');  // Windows exporters write backslashes
-  return cached(path, [&](std::string& problem) {
-    std::optional<Texture> texture = decode_texture_file(path, problem);
-    if (texture) texture->name = reference;
-    return texture;
-  });
-}
-
-int32_t TextureCache::from_memory(const std::string& key, const void* data, size_t size, const std::string& format_hint) {
-  return cached(key, [&](std::string& problem) { return decode_texture_memory(key, data, size, format_hint, problem); });
 }
 
 }  // namespace kdray

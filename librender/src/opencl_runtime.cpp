@@ -129,12 +129,15 @@ Runtime::~Runtime() {
 }
 
 Buffer Runtime::buffer(size_t bytes, const void* data, cl_mem_flags flags) {
+  constexpr size_t kMinimumBytes = 16;
   cl_int status = CL_SUCCESS;
-  size_t size = std::max<size_t>(bytes, 16);
-  if (data && bytes > 0) flags |= CL_MEM_COPY_HOST_PTR;
-  cl_mem mem = clCreateBuffer(context_, flags, size, (data && bytes > 0) ? const_cast<void*>(data) : nullptr, &status);
+  cl_mem mem = clCreateBuffer(context_, flags, std::max(bytes, kMinimumBytes), nullptr, &status);
   check(status, "clCreateBuffer");
-  return Buffer(mem);
+  Buffer buffer(mem);
+  if (data && bytes > 0) {
+    check(clEnqueueWriteBuffer(queue_, mem, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr), "clEnqueueWriteBuffer");
+  }
+  return buffer;
 }
 
 size_t Runtime::local_size(const DeviceSelection& selection) const {

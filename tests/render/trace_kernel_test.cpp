@@ -8,14 +8,22 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
 
 namespace kdray {
 namespace {
 
+// Counts records that differ in any bit, and prints the first few.
 size_t count_differences(const std::vector<HitRecord>& a, const std::vector<HitRecord>& b) {
   size_t differences = 0;
-  for (size_t i = 0; i < a.size(); ++i) differences += std::memcmp(&a[i], &b[i], sizeof(HitRecord)) != 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (std::memcmp(&a[i], &b[i], sizeof(HitRecord)) == 0) continue;
+    if (++differences <= 5) {
+      std::printf("ray %zu: cpu t=%a tri=%u u=%a v=%a, device t=%a tri=%u u=%a v=%a\n", i, a[i].t, a[i].triangle,
+                  a[i].u, a[i].v, b[i].t, b[i].triangle, b[i].u, b[i].v);
+    }
+  }
   return differences;
 }
 

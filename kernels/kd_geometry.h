@@ -94,14 +94,20 @@ KD_INLINE int kd_ray_setup(KdRay* ray, float ox, float oy, float oz, float dx, f
   return finite && ray->dir[kz] != 0.0f && tmin < tmax;
 }
 
-/* Slab test against [bmin, bmax]; narrows [*t_near, *t_far] and returns 0 if it becomes empty.
- * The far distance is widened by a few ulps (pbrt's 1 + 2*gamma(3)) so rounding never drops a
- * box the ray really touches. */
+/* Slab test against the closed box [bmin, bmax]; narrows [*t_near, *t_far] and returns 0 if it
+ * becomes empty. A zero direction component keeps the whole slab when the origin lies in it,
+ * boundary included (the signed finite reciprocal alone would make a ray with d = -0 on the
+ * lower face leave at once). The far distance is widened by a few ulps (pbrt's 1 + 2*gamma(3))
+ * so rounding never drops a box the ray really touches. */
 KD_INLINE int kd_ray_box(const KdRay* ray, const float bmin[3], const float bmax[3], float* t_near,
                          float* t_far) {
   float lo = *t_near;
   float hi = *t_far;
   for (int k = 0; k < 3; ++k) {
+    if (ray->dir[k] == 0.0f) {
+      if (ray->org[k] < bmin[k] || ray->org[k] > bmax[k]) return 0;
+      continue;
+    }
     float t0 = (bmin[k] - ray->org[k]) * ray->inv_dir[k];
     float t1 = (bmax[k] - ray->org[k]) * ray->inv_dir[k];
     float entry = kd_minf(t0, t1);

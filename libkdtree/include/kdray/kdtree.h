@@ -1,0 +1,89 @@
+// The SAH k-d tree: build settings, the tree itself, its statistics and the .kdtree file
+// (formats/kdtree.md).
+#pragma once
+
+#include <kdray/error.h>
+#include <kdray/scene.h>
+
+#include <kernels/kd_types.h>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace kdray {
+
+// Everything that decides the shape of the tree; recorded in the .kdtree file. The names and
+// defaults are the seed paper's (GUIDE section 3).
+struct BuildSettings {
+  static constexpr float kDefaultTraversalCost = 15.0f;     // K_T
+  static constexpr float kDefaultIntersectionCost = 20.0f;  // K_I
+  static constexpr float kDefaultEmptyBonus = 0.8f;         // lambda when one side is empty
+  static constexpr uint32_t kAutoMaxDepthCap = 48;          // cap of 8 + 1.3 log2 N
+  static constexpr uint32_t kMaxDepthLimit = 64;            // KD_MAX_TREE_DEPTH: the full stack
+
+  float traversal_cost = kDefaultTraversalCost;
+  float intersection_cost = kDefaultIntersectionCost;
+  float empty_bonus = kDefaultEmptyBonus;
+  uint32_t max_depth = 0;      // 0: automatic, 8 + 1.3 log2 N capped at kAutoMaxDepthCap
+  bool perfect_splits = true;  // false: candidate planes from unclipped triangle bounds
+
+  // The depth limit actually used for a scene of `triangles` triangles.
+  uint32_t resolved_max_depth(uint64_t triangles) const;
+};
+
+// Structure and quality of a built tree. Deterministic: recorded in the file, so it holds no
+// timings (the bytes of a tree must not depend on the machine or thread count).
+struct TreeStats {
+  uint64_t triangles = 0;          // triangles of the scene
+  uint64_t inner_nodes = 0;
+  uint64_t leaves = 0;
+  uint64_t empty_leaves = 0;
+  uint64_t leaf_references = 0;    // entries of the leaf-triangle array
+  uint32_t max_depth = 0;          // of any leaf, root = 0
+  double mean_leaf_depth = 0;
+  double mean_triangles_per_leaf = 0;  // over non-empty leaves
+  double references_per_triangle = 0;
+  double sah_cost = 0;             // K_T * sum SA(inner)/SA(root) + K_I * sum N * SA(leaf)/SA(root)
+};
+
+struct KdTree {
+  std::vector<KdNode> nodes;             // root first; see kernels/kd_types.h
+  std::vector<uint32_t> leaf_triangles;  // leaves are ranges of this array
+  Bounds bounds;                         // the root voxel
+  BuildSettings settings;
+  TreeStats stats;
+  uint64_t scene_hash = 0;               // content hash of the scene it was built from
+};
+
+// Called with the fraction of triangles placed in finished subtrees (0..1), from any thread,
+// serialised by the builder.
+using BuildProgress = std::function<void(double fraction)>;
+
+struct BuildControl {
+  unsigned threads = 0;  // 0: all hardware threads; the tree is the same for any count
+  BuildProgress progress;
+};
+
+// Builds the tree for scene (whose content_hash is recorded; compute it first). Triangles with
+// non-finite vertices are left out. Throws kdray::Error for settings out of range.
+KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const BuildControl& control = {});
+
+// Statistics of a tree (used by the builders and by read_tree's consistency check).
+TreeStats compute_tree_stats(const KdTree& tree, uint64_t scene_triangles);
+
+// Writes atomically. Throws kdray::Error.
+void write_tree(const std::string& path, const KdTree& tree);
+
+// Reads and validates a .kdtree: checksum, then every node, child and leaf range, so that
+// traversal can trust it. Throws kdray::Error naming the file.
+KdTree read_tree(const std::string& path);
+
+// Throws kdray::Error when the tree was built for another scene ("stale tree: built for scene
+// <hash>, but <scene path> has <hash>: rebuild with kdbuild") or references a triangle the
+// scene does not have.
+void check_tree_matches_scene(const KdTree& tree, const std::string& tree_path, const Scene& scene,
+                              const std::string& scene_path);
+
+}  // namespace kdray

@@ -1,0 +1,40 @@
+// CPU traversal of a k-d tree: the reference the OpenCL kernels are checked against. It runs
+// the very code the kernels run (kernels/kd_traverse.h), compiled once per stack size.
+#pragma once
+
+#include <kdray/kdtree.h>
+#include <kdray/scene.h>
+
+#include <kernels/kd_types.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace kdray {
+
+enum class TraversalStack {
+  Short,   // KD_SHORT_STACK_SIZE entries (8), restart when it runs empty: what the kernels use
+  Depth1,  // one entry: forces restarts, for tests
+  Full,    // KD_MAX_TREE_DEPTH entries: never restarts
+};
+
+struct TraceOptions {
+  unsigned threads = 0;  // 0: all hardware threads
+  TraversalStack stack = TraversalStack::Short;
+};
+
+// Closest hit per ray (t = +inf, triangle = KD_NO_HIT on a miss). The tree must match the
+// scene (check_tree_matches_scene). hits is resized to rays.size().
+void trace_closest(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
+                   std::vector<HitRecord>& hits, const TraceOptions& options = {});
+
+// 1 per ray that hits anything with tmin < t < tmax, else 0.
+void trace_any(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
+               std::vector<uint8_t>& occluded, const TraceOptions& options = {});
+
+// One ray, on the calling thread.
+HitRecord intersect_closest(const Scene& scene, const KdTree& tree, const RayRecord& ray,
+                            TraversalStack stack = TraversalStack::Short);
+
+}  // namespace kdray

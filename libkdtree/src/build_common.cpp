@@ -1,0 +1,284 @@
+#include "build_common.h"
+
+#include <kdray/error.h>
+
+#include <string>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace kdray::detail {
+namespace {
+
+// Largest polygon Sutherland-Hodgman can produce from a triangle and six planes: 3 + 6.
+constexpr int kMaxClipVertices = 9;
+
+struct Polygon {
+  double points[kMaxClipVertices + 1][3];
+  int size = 0;
+};
+
+// Keeps the part of `in` with coordinate `axis` >= bound (keep_above) or <= bound.
+void clip_polygon(const Polygon& in, int axis, double bound, bool keep_above, Polygon& out) {
+  out.size = 0;
+  for (int i = 0; i < in.size; ++i) {
+    const double* p = in.points[i];
+    const double* q = in.points[(i + 1) % in.size];
+    const bool p_inside = keep_above ? p[axis] >= bound : p[axis] <= bound;
+    const bool q_inside = keep_above ? q[axis] >= bound : q[axis] <= bound;
+    if (p_inside) {
+      std::copy(p, p + 3, out.points[out.size]);
+      ++out.size;
+    }
+    if (p_inside != q_inside) {
+      const double t = (bound - p[axis]) / (q[axis] - p[axis]);
+      double* x = out.points[out.size];
+      for (int k = 0; k < 3; ++k) x[k] = p[k] + t * (q[k] - p[k]);
+      x[axis] = bound;  // exactly on the plane, whatever the rounding of t
+      ++out.size;
+    }
+  }
+}
+
+float round_down(double value) {
+  float rounded = static_cast<float>(value);
+  return static_cast<double>(rounded) > value ? std::nextafter(rounded, -INFINITY) : rounded;
+}
+float round_up(double value) {
+  float rounded = static_cast<float>(value);
+  return static_cast<double>(rounded) < value ? std::nextafter(rounded, INFINITY) : rounded;
+}
+
+bool intersect_boxes(const Box3& a, const Box3& b, Box3& out) {
+  for (int k = 0; k < 3; ++k) {
+    out.min[k] = std::max(a.min[k], b.min[k]);
+    out.max[k] = std::min(a.max[k], b.max[k]);
+    if (out.min[k] > out.max[k]) return false;
+  }
+  return true;
+}
+
+const Vec3& vertex(const Scene& scene, uint32_t triangle, int corner) {
+  return scene.positions[scene.indices[3 * static_cast<size_t>(triangle) + corner]];
+}
+
+bool finite_triangle(const Scene& scene, size_t triangle) {
+  for (int corner = 0; corner < 3; ++corner) {
+    const Vec3& p = scene.positions[scene.indices[3 * triangle + corner]];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+double surface_area(const Box3& box) {
+  const double dx = static_cast<double>(box.max[0]) - box.min[0];
+  const double dy = static_cast<double>(box.max[1]) - box.min[1];
+  const double dz = static_cast<double>(box.max[2]) - box.min[2];
+  return 2.0 * (dx * dy + dy * dz + dz * dx);
+}
+
+Box3 box_of(const Bounds& bounds) {
+  return Box3{{bounds.min.x, bounds.min.y, bounds.min.z}, {bounds.max.x, bounds.max.y, bounds.max.z}};
+}
+
+Box3 below_plane(const Box3& voxel, int axis, float position) {
+  Box3 below = voxel;
+  below.max[axis] = position;
+  return below;
+}
+
+Box3 above_plane(const Box3& voxel, int axis, float position) {
+  Box3 above = voxel;
+  above.min[axis] = position;
+  return above;
+}
+
+bool triangle_bounds_in_voxel(const Scene& scene, uint32_t triangle, const Box3& voxel, bool perfect_splits,
+                              Box3& out) {
+  Box3 box;
+  for (int k = 0; k < 3; ++k) {
+    box.min[k] = INFINITY;
+    box.max[k] = -INFINITY;
+  }
+  for (int corner = 0; corner < 3; ++corner) {
+    const float* p = &vertex(scene, triangle, corner).x;
+    for (int k = 0; k < 3; ++k) {
+      box.min[k] = std::min(box.min[k], p[k]);
+      box.max[k] = std::max(box.max[k], p[k]);
+    }
+  }
+  bool inside = true;
+  for (int k = 0; k < 3; ++k) inside = inside && box.min[k] >= voxel.min[k] && box.max[k] <= voxel.max[k];
+  if (!perfect_splits || inside) return intersect_boxes(box, voxel, out);
+
+  Polygon polygon, clipped;
+  polygon.size = 3;
+  for (int corner = 0; corner < 3; ++corner) {
+    const float* p = &vertex(scene, triangle, corner).x;
+    for (int k = 0; k < 3; ++k) polygon.points[corner][k] = p[k];
+  }
+  for (int k = 0; k < 3; ++k) {
+    clip_polygon(polygon, k, voxel.min[k], true, clipped);
+    clip_polygon(clipped, k, voxel.max[k], false, polygon);
+    if (polygon.size == 0) return false;
+  }
+  Box3 clipped_box;
+  for (int k = 0; k < 3; ++k) {
+    double lo = polygon.points[0][k], hi = lo;
+    for (int i = 1; i < polygon.size; ++i) {
+      lo = std::min(lo, polygon.points[i][k]);
+      hi = std::max(hi, polygon.points[i][k]);
+    }
+    clipped_box.min[k] = round_down(lo);
+    clipped_box.max[k] = round_up(hi);
+  }
+  return intersect_boxes(clipped_box, voxel, out);
+}
+
+bool child_bounds(const Scene& scene, uint32_t triangle, const Box3& parent_bounds, const Box3& child_voxel,
+                  bool perfect_splits, Box3& out) {
+  if (perfect_splits) return triangle_bounds_in_voxel(scene, triangle, child_voxel, true, out);
+  return intersect_boxes(parent_bounds, child_voxel, out);
+}
+
+double CostModel::split_cost(double p_left, double p_right, uint64_t n_left, uint64_t n_right) const {
+  const bool one_side_empty = n_left == 0 || n_right == 0;
+  const double lambda = one_side_empty && p_left != 1.0 && p_right != 1.0 ? empty_bonus : 1.0;
+  return lambda * (traversal + intersection * (p_left * static_cast<double>(n_left) +
+                                               p_right * static_cast<double>(n_right)));
+}
+
+CostModel cost_model_of(const BuildSettings& settings) {
+  return CostModel{settings.traversal_cost, settings.intersection_cost, settings.empty_bonus};
+}
+
+void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, uint64_t triangles,
+                const CostModel& cost, SplitChoice& best) {
+  const double area = surface_area(voxel);
+  if (!(area > 0.0)) return;  // a voxel without area: no split can pay
+  uint64_t n_left = 0, n_right = triangles;
+  size_t i = 0;
+  while (i < count) {
+    const float position = events[i].position;
+    uint64_t ending = 0, planar = 0, starting = 0;
+    for (; i < count && events[i].position == position && events[i].type() == kEventEnd; ++i) ++ending;
+    for (; i < count && events[i].position == position && events[i].type() == kEventPlanar; ++i) ++planar;
+    for (; i < count && events[i].position == position && events[i].type() == kEventStart; ++i) ++starting;
+    n_right -= ending + planar;
+    const double p_left = surface_area(below_plane(voxel, axis, position)) / area;
+    const double p_right = surface_area(above_plane(voxel, axis, position)) / area;
+    const double planar_left_cost = cost.split_cost(p_left, p_right, n_left + planar, n_right);
+    const double planar_right_cost = cost.split_cost(p_left, p_right, n_left, n_right + planar);
+    const bool planar_left = planar_left_cost <= planar_right_cost;
+    const double split_cost = planar_left ? planar_left_cost : planar_right_cost;
+    if (best.axis < 0 || split_cost < best.cost) best = SplitChoice{split_cost, axis, position, planar_left};
+    n_left += starting + planar;
+  }
+}
+
+void classify(const Event* events, size_t count, const SplitChoice& split, uint8_t* sides) {
+  for (size_t i = 0; i < count; ++i) {
+    const Event& event = events[i];
+    const float p = event.position;
+    switch (event.type()) {
+      case kEventEnd:
+        if (p <= split.position) sides[event.triangle()] = kLeftOnly;
+        break;
+      case kEventStart:
+        if (p >= split.position) sides[event.triangle()] = kRightOnly;
+        break;
+      case kEventPlanar:
+        if (p < split.position || (p == split.position && split.planar_left))
+          sides[event.triangle()] = kLeftOnly;
+        else
+          sides[event.triangle()] = kRightOnly;
+        break;
+    }
+  }
+}
+
+void Subtree::add_leaf(const uint32_t* triangles, size_t count) {
+  if (count > KD_MAX_CHILD_INDEX || leaf_triangles.size() + count > UINT32_MAX)
+    throw Error("", "the tree is too large for 32-bit leaf indices");
+  nodes.push_back(KdNode{static_cast<uint32_t>(leaf_triangles.size()),
+                         static_cast<uint32_t>(count) << 2 | KD_LEAF_TAG});
+  leaf_triangles.insert(leaf_triangles.end(), triangles, triangles + count);
+}
+
+size_t Subtree::add_inner(int axis, float position) {
+  uint32_t bits;
+  std::memcpy(&bits, &position, sizeof bits);
+  nodes.push_back(KdNode{bits, static_cast<uint32_t>(axis)});
+  return nodes.size() - 1;
+}
+
+void Subtree::set_far_child(size_t inner, size_t far_child) {
+  if (far_child > KD_MAX_CHILD_INDEX) throw Error("", "the tree is too large for 30-bit child indices");
+  nodes[inner].header = static_cast<uint32_t>(far_child) << 2 | (nodes[inner].header & 3u);
+}
+
+void Subtree::append(const Subtree& other) {
+  const uint64_t node_base = nodes.size();
+  const uint64_t leaf_base = leaf_triangles.size();
+  if (node_base + other.nodes.size() > KD_MAX_CHILD_INDEX || leaf_base + other.leaf_triangles.size() > UINT32_MAX)
+    throw Error("", "the tree is too large for 32-bit indices");
+  nodes.reserve(nodes.size() + other.nodes.size());
+  for (KdNode node : other.nodes) {
+    if (kd_node_is_leaf(node))
+      node.payload += static_cast<uint32_t>(leaf_base);
+    else
+      node.header += static_cast<uint32_t>(node_base) << 2;
+    nodes.push_back(node);
+  }
+  leaf_triangles.insert(leaf_triangles.end(), other.leaf_triangles.begin(), other.leaf_triangles.end());
+}
+
+void validate_settings(const BuildSettings& settings) {
+  if (!(settings.traversal_cost >= 0.0f) || !std::isfinite(settings.traversal_cost))
+    throw Error("", "traversal cost (K_T) must be a finite number >= 0");
+  if (!(settings.intersection_cost > 0.0f) || !std::isfinite(settings.intersection_cost))
+    throw Error("", "intersection cost (K_I) must be a finite number > 0");
+  if (!(settings.empty_bonus > 0.0f && settings.empty_bonus <= 1.0f))
+    throw Error("", "empty bonus must be in (0, 1]");
+  if (settings.max_depth > BuildSettings::kMaxDepthLimit)
+    throw Error("", "max depth must be at most " + std::to_string(BuildSettings::kMaxDepthLimit));
+}
+
+// The root of both builders: the finite triangles, their bounds and the root voxel.
+RootWork prepare_root(const Scene& scene) {
+  RootWork root;
+  const size_t count = scene.triangle_count();
+  if (count > kMaxLocalTriangles) throw Error("", "too many triangles for a k-d tree (at most 2^30 - 1)");
+  Box3 everything{{-INFINITY, -INFINITY, -INFINITY}, {INFINITY, INFINITY, INFINITY}};
+  bool first = true;
+  for (size_t t = 0; t < count; ++t) {
+    if (!finite_triangle(scene, t)) continue;
+    Box3 bounds;
+    triangle_bounds_in_voxel(scene, static_cast<uint32_t>(t), everything, false, bounds);
+    root.triangles.push_back(static_cast<uint32_t>(t));
+    root.bounds.push_back(bounds);
+    for (int k = 0; k < 3; ++k) {
+      root.voxel.min[k] = first ? bounds.min[k] : std::min(root.voxel.min[k], bounds.min[k]);
+      root.voxel.max[k] = first ? bounds.max[k] : std::max(root.voxel.max[k], bounds.max[k]);
+    }
+    first = false;
+  }
+  if (first) root.voxel = Box3{{0, 0, 0}, {0, 0, 0}};
+  return root;
+}
+
+KdTree finish_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel, Subtree&& built) {
+  KdTree tree;
+  tree.nodes = std::move(built.nodes);
+  tree.leaf_triangles = std::move(built.leaf_triangles);
+  tree.bounds = Bounds{{voxel.min[0], voxel.min[1], voxel.min[2]}, {voxel.max[0], voxel.max[1], voxel.max[2]}};
+  tree.settings = settings;
+  tree.scene_hash = scene.content_hash;
+  tree.stats = compute_tree_stats(tree, scene.triangle_count());
+  return tree;
+}
+
+}  // namespace kdray::detail

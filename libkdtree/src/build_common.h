@@ -1,0 +1,131 @@
+// The parts of tree building that the O(N log N) builder (build_events.cpp) and the
+// O(N log^2 N) reference builder in tests/kdtree share, so that "same candidates, cost and
+// termination" holds by construction and the tests check only the event bookkeeping:
+// candidate bounds (perfect splits), the cost function, the sweep over sorted events, the
+// classification of triangles, and the encoding of nodes into a subtree.
+#pragma once
+
+#include <kdray/kdtree.h>
+#include <kdray/scene.h>
+
+#include <kernels/kd_types.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace kdray::detail {
+
+struct Box3 {
+  float min[3];
+  float max[3];
+};
+
+double surface_area(const Box3& box);
+Box3 box_of(const Bounds& bounds);
+
+// The voxel on one side of a split plane.
+Box3 below_plane(const Box3& voxel, int axis, float position);
+Box3 above_plane(const Box3& voxel, int axis, float position);
+
+// Bounds of triangle `triangle` of the scene inside `voxel`: the triangle clipped to the
+// voxel (Sutherland-Hodgman in double, rounded outwards to float) with perfect splits, or its
+// bounding box intersected with the voxel without. False when nothing is left.
+bool triangle_bounds_in_voxel(const Scene& scene, uint32_t triangle, const Box3& voxel, bool perfect_splits,
+                              Box3& out);
+
+// The same for a triangle whose bounds in the parent voxel are `parent_bounds`, when the
+// child voxel differs from the parent only on the split axis.
+bool child_bounds(const Scene& scene, uint32_t triangle, const Box3& parent_bounds, const Box3& child_voxel,
+                  bool perfect_splits, Box3& out);
+
+// Seed cost: lambda * (K_T + K_I * (P_L N_L + P_R N_R)), lambda = empty bonus when one side is
+// empty and neither side is the whole voxel.
+struct CostModel {
+  double traversal;
+  double intersection;
+  double empty_bonus;
+  double split_cost(double p_left, double p_right, uint64_t n_left, uint64_t n_right) const;
+  double leaf_cost(uint64_t n) const { return intersection * static_cast<double>(n); }
+};
+CostModel cost_model_of(const BuildSettings& settings);
+
+// One boundary of one triangle on one axis. Sorted by position, then type (end < planar <
+// start: the sweep needs the ends first), then triangle, a total order, so sorted lists
+// are unique and merging equals re-sorting. 8 bytes: the events of a million triangles fit
+// in cache-friendly arrays.
+enum EventType : uint32_t { kEventEnd = 0, kEventPlanar = 1, kEventStart = 2 };
+struct Event {
+  float position;
+  uint32_t packed;  // local triangle index << 2 | type
+  uint32_t triangle() const { return packed >> 2; }
+  EventType type() const { return static_cast<EventType>(packed & 3u); }
+};
+static_assert(sizeof(Event) == 8, "events are 8 bytes");
+inline uint32_t event_order_key(uint32_t packed) { return (packed & 3u) << 30 | packed >> 2; }
+inline bool operator<(const Event& a, const Event& b) {
+  if (a.position != b.position) return a.position < b.position;
+  return event_order_key(a.packed) < event_order_key(b.packed);
+}
+constexpr uint32_t kMaxLocalTriangles = (1u << 30) - 1u;
+
+// Appends the events of a triangle with `bounds` (local index `local`) on `axis`.
+inline void append_events(std::vector<Event>& events, const Box3& bounds, int axis, uint32_t local) {
+  if (bounds.min[axis] == bounds.max[axis]) {
+    events.push_back({bounds.min[axis], local << 2 | kEventPlanar});
+  } else {
+    events.push_back({bounds.min[axis], local << 2 | kEventStart});
+    events.push_back({bounds.max[axis], local << 2 | kEventEnd});
+  }
+}
+
+struct SplitChoice {
+  double cost = 0;
+  int axis = -1;  // -1: no split found yet
+  float position = 0;
+  bool planar_left = false;
+};
+
+// Sweeps the sorted events of one axis of a voxel holding `triangles` triangles and keeps the
+// cheapest split in `best` (a strictly lower cost replaces it: ties keep the earlier axis and
+// position). Triangles lying in the plane are tried on both sides.
+void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, uint64_t triangles,
+                const CostModel& cost, SplitChoice& best);
+
+enum Side : uint8_t { kBothSides = 0, kLeftOnly = 1, kRightOnly = 2, kNeitherSide = 3 };
+
+// Sides of each local triangle for `split`, from the events of the split axis (Wald & Havran):
+// a triangle ending on or below the plane goes left, one starting on or above it right, one in
+// the plane to the chosen side; all others straddle and go to both.
+void classify(const Event* events, size_t count, const SplitChoice& split, uint8_t* sides);
+
+// A tree or subtree under construction: nodes in depth-first order, near (below) child next,
+// and the leaf-triangle array. Indices are relative to this subtree.
+struct Subtree {
+  std::vector<KdNode> nodes;
+  std::vector<uint32_t> leaf_triangles;
+
+  void add_leaf(const uint32_t* triangles, size_t count);
+  // Adds an inner node whose far child is not known yet; returns its index.
+  size_t add_inner(int axis, float position);
+  void set_far_child(size_t inner, size_t far_child);
+  // Appends a subtree built separately, shifting its indices.
+  void append(const Subtree& other);
+};
+
+// Throws kdray::Error for settings out of range.
+void validate_settings(const BuildSettings& settings);
+
+// The root of both builders: the triangles with finite vertices (in index order), their
+// bounding boxes and the root voxel around them (all zeros without triangles).
+struct RootWork {
+  Box3 voxel;
+  std::vector<uint32_t> triangles;
+  std::vector<Box3> bounds;
+};
+RootWork prepare_root(const Scene& scene);
+
+// Wraps a finished subtree into a KdTree with settings, scene hash and statistics.
+KdTree finish_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel, Subtree&& built);
+
+}  // namespace kdray::detail

@@ -1,0 +1,198 @@
+// The O(N log N) SAH builder (Wald & Havran 2006): events are sorted once per axis at the root;
+// each split divides the sorted lists in one pass and merges in the few re-clipped events of
+// straddling triangles, so no node re-sorts. Subtrees above a size threshold are built in
+// parallel into their own arrays and concatenated in a fixed order, so the bytes do not
+// depend on the thread count.
+#include <kdray/error.h>
+#include <kdray/kdtree.h>
+
+#include "build_common.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_sort.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+
+namespace kdray {
+
+uint32_t BuildSettings::resolved_max_depth(uint64_t triangles) const {
+  if (max_depth != 0) return max_depth;
+  const double automatic = 8.0 + 1.3 * std::log2(static_cast<double>(std::max<uint64_t>(triangles, 1)));
+  return std::min(kAutoMaxDepthCap, static_cast<uint32_t>(automatic));
+}
+
+namespace detail {
+namespace {
+
+// Nodes with at least this many triangles build their two children in parallel.
+constexpr size_t kParallelTriangles = 4096;
+
+struct NodeWork {
+  Box3 voxel;
+  uint32_t depth = 0;
+  std::vector<uint32_t> triangles;  // scene triangle per local index
+  std::vector<Box3> bounds;         // per local index: the triangle's bounds in this voxel
+  std::vector<Event> events[3];     // sorted
+};
+
+class EventBuilder {
+ public:
+  EventBuilder(const Scene& scene, const BuildSettings& settings, const BuildControl& control,
+               uint64_t triangle_count)
+      : scene_(scene),
+        settings_(settings),
+        cost_(cost_model_of(settings)),
+        max_depth_(settings.resolved_max_depth(triangle_count)),
+        control_(control) {}
+
+  void build(NodeWork& work, Subtree& out) {
+    const size_t n = work.triangles.size();
+    SplitChoice split;
+    if (n > 0 && work.depth < max_depth_)
+      for (int axis = 0; axis < 3; ++axis)
+        sweep_axis(work.events[axis].data(), work.events[axis].size(), axis, work.voxel, n, cost_, split);
+    if (split.axis < 0 || !(split.cost < cost_.leaf_cost(n))) {
+      out.add_leaf(work.triangles.data(), n);
+      report_leaf(work.depth);
+      return;
+    }
+    NodeWork left, right;
+    divide(work, split, left, right);
+    const size_t inner = out.add_inner(split.axis, split.position);
+    if (n >= kParallelTriangles) {
+      Subtree left_tree, right_tree;
+      tbb::parallel_invoke([&] { build(left, left_tree); }, [&] { build(right, right_tree); });
+      out.append(left_tree);
+      out.set_far_child(inner, out.nodes.size());
+      out.append(right_tree);
+    } else {
+      build(left, out);
+      out.set_far_child(inner, out.nodes.size());
+      build(right, out);
+    }
+  }
+
+ private:
+  // Splits `work` into the two children and releases its memory.
+  void divide(NodeWork& work, const SplitChoice& split, NodeWork& left, NodeWork& right) const {
+    const size_t n = work.triangles.size();
+    std::vector<uint8_t> sides(n, kBothSides);
+    classify(work.events[split.axis].data(), work.events[split.axis].size(), split, sides.data());
+    left.voxel = below_plane(work.voxel, split.axis, split.position);
+    right.voxel = above_plane(work.voxel, split.axis, split.position);
+    left.depth = right.depth = work.depth + 1;
+
+    // Local index of each parent triangle in each child: monotone, so the order of the kept
+    // events survives. Straddlers get fresh bounds and events in each child they really reach.
+    std::vector<uint32_t> left_index(n, UINT32_MAX), right_index(n, UINT32_MAX);
+    std::vector<Event> fresh_left[3], fresh_right[3];
+    auto place = [](NodeWork& child, std::vector<uint32_t>& index, std::vector<Event>* fresh, size_t i,
+                    uint32_t triangle, const Box3& bounds) {
+      index[i] = static_cast<uint32_t>(child.triangles.size());
+      child.triangles.push_back(triangle);
+      child.bounds.push_back(bounds);
+      if (fresh)
+        for (int axis = 0; axis < 3; ++axis) append_events(fresh[axis], bounds, axis, index[i]);
+    };
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t triangle = work.triangles[i];
+      if (sides[i] == kLeftOnly) {
+        place(left, left_index, nullptr, i, triangle, work.bounds[i]);
+      } else if (sides[i] == kRightOnly) {
+        place(right, right_index, nullptr, i, triangle, work.bounds[i]);
+      } else {
+        Box3 bounds;
+        if (child_bounds(scene_, triangle, work.bounds[i], left.voxel, settings_.perfect_splits, bounds))
+          place(left, left_index, fresh_left, i, triangle, bounds);
+        if (child_bounds(scene_, triangle, work.bounds[i], right.voxel, settings_.perfect_splits, bounds))
+          place(right, right_index, fresh_right, i, triangle, bounds);
+      }
+    }
+    work.triangles = {};
+    work.bounds = {};
+
+    for (int axis = 0; axis < 3; ++axis) {
+      std::vector<Event> kept_left, kept_right;
+      kept_left.reserve(work.events[axis].size() / 2 + 1);
+      kept_right.reserve(work.events[axis].size() / 2 + 1);
+      for (const Event& event : work.events[axis]) {
+        const uint32_t local = event.triangle();
+        const uint32_t type = event.packed & 3u;
+        if (sides[local] == kLeftOnly)
+          kept_left.push_back({event.position, left_index[local] << 2 | type});
+        else if (sides[local] == kRightOnly)
+          kept_right.push_back({event.position, right_index[local] << 2 | type});
+      }
+      work.events[axis] = {};
+      merge_into(kept_left, fresh_left[axis], left.events[axis]);
+      merge_into(kept_right, fresh_right[axis], right.events[axis]);
+    }
+  }
+
+  static void merge_into(std::vector<Event>& kept, std::vector<Event>& fresh, std::vector<Event>& out) {
+    if (fresh.empty()) {
+      out = std::move(kept);
+      return;
+    }
+    std::sort(fresh.begin(), fresh.end());
+    out.resize(kept.size() + fresh.size());
+    std::merge(kept.begin(), kept.end(), fresh.begin(), fresh.end(), out.begin());
+  }
+
+  // Progress is the share of the tree's "mass" in finished leaves, each leaf weighing
+  // 2^-depth: for a binary tree these weights sum to exactly 1 (Kraft), so it ends at 100%.
+  void report_leaf(uint32_t depth) {
+    if (!control_.progress) return;
+    const uint64_t weight = uint64_t{1} << (63 - std::min<uint32_t>(depth, 63));
+    const uint64_t before = finished_mass_.fetch_add(weight);
+    constexpr uint64_t kPercent = (uint64_t{1} << 63) / 100;
+    if ((before + weight) / kPercent != before / kPercent) {
+      // Reading the total under the lock keeps the reported fractions increasing.
+      std::lock_guard<std::mutex> lock(progress_mutex_);
+      control_.progress(std::min(1.0, std::ldexp(static_cast<double>(finished_mass_.load()), -63)));
+    }
+  }
+
+  const Scene& scene_;
+  const BuildSettings& settings_;
+  const CostModel cost_;
+  const uint32_t max_depth_;
+  const BuildControl& control_;
+  std::atomic<uint64_t> finished_mass_{0};
+  std::mutex progress_mutex_;
+};
+
+}  // namespace
+
+}  // namespace detail
+
+KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const BuildControl& control) {
+  detail::validate_settings(settings);
+  detail::RootWork root = detail::prepare_root(scene);
+  tbb::task_arena arena(control.threads == 0 ? tbb::task_arena::automatic : static_cast<int>(control.threads));
+  detail::Subtree built;
+  arena.execute([&] {
+    detail::NodeWork work;
+    work.voxel = root.voxel;
+    work.triangles = std::move(root.triangles);
+    work.bounds = std::move(root.bounds);
+    tbb::parallel_for(0, 3, [&](int axis) {
+      std::vector<detail::Event>& events = work.events[axis];
+      events.reserve(2 * work.triangles.size());
+      for (size_t i = 0; i < work.triangles.size(); ++i)
+        detail::append_events(events, work.bounds[i], axis, static_cast<uint32_t>(i));
+      tbb::parallel_sort(events.begin(), events.end());
+    });
+    detail::EventBuilder builder(scene, settings, control, work.triangles.size());
+    builder.build(work, built);
+  });
+  if (control.progress) control.progress(1.0);
+  return detail::finish_tree(scene, settings, root.voxel, std::move(built));
+}
+
+}  // namespace kdray

@@ -1,0 +1,171 @@
+// The .kdtree file (formats/kdtree.md) on top of the shared section container.
+#include <kdray/container_file.h>
+#include <kdray/error.h>
+#include <kdray/kdtree.h>
+
+#include <kernels/kd_traverse.h>
+
+#include <cereal/archives/portable_binary.hpp>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace kdray {
+
+template <class Archive>
+void serialize(Archive& archive, BuildSettings& settings) {
+  archive(settings.traversal_cost, settings.intersection_cost, settings.empty_bonus, settings.max_depth,
+          settings.perfect_splits);
+}
+
+template <class Archive>
+void serialize(Archive& archive, TreeStats& stats) {
+  archive(stats.triangles, stats.inner_nodes, stats.leaves, stats.empty_leaves, stats.leaf_references,
+          stats.max_depth, stats.mean_leaf_depth, stats.mean_triangles_per_leaf, stats.references_per_triangle,
+          stats.sah_cost);
+}
+
+namespace {
+
+template <typename T>
+std::string to_portable_binary(const T& value) {
+  std::ostringstream stream;
+  {
+    cereal::PortableBinaryOutputArchive archive(stream);
+    archive(const_cast<T&>(value));
+  }
+  return stream.str();
+}
+
+template <typename T>
+T from_portable_binary(const std::string& bytes, const std::string& path, const char* what) {
+  T value;
+  try {
+    std::istringstream stream(bytes);
+    cereal::PortableBinaryInputArchive archive(stream);
+    archive(value);
+  } catch (const std::exception&) {
+    throw Error(path, std::string("damaged ") + what + " section");
+  }
+  return value;
+}
+
+// Checks that the nodes form one tree in the documented depth-first layout (near child next,
+// far child right after the near subtree), no deeper than KD_MAX_TREE_DEPTH, with every leaf
+// range inside the leaf-triangle array and every triangle index below `triangles`.
+void validate_structure(const KdTree& tree, const std::string& path) {
+  if (tree.nodes.empty()) throw Error(path, "damaged tree: no nodes");
+  struct Pending {
+    uint64_t node;
+    uint32_t depth;
+  };
+  std::vector<Pending> stack{{0, 0}};
+  uint64_t expected = 0;
+  while (!stack.empty()) {
+    const Pending item = stack.back();
+    stack.pop_back();
+    if (item.node != expected || item.node >= tree.nodes.size())
+      throw Error(path, "damaged tree: node " + std::to_string(expected) + " is out of place");
+    ++expected;
+    const KdNode node = tree.nodes[item.node];
+    if (kd_node_is_leaf(node)) {
+      const uint64_t first = kd_leaf_first(node), count = kd_leaf_count(node);
+      if (first + count > tree.leaf_triangles.size())
+        throw Error(path, "damaged tree: leaf " + std::to_string(item.node) + " reaches past the leaf array");
+      continue;
+    }
+    if (item.depth + 1 > KD_MAX_TREE_DEPTH)
+      throw Error(path, "damaged tree: deeper than " + std::to_string(KD_MAX_TREE_DEPTH) + " levels");
+    if (!std::isfinite(kd_node_split(node)))
+      throw Error(path, "damaged tree: node " + std::to_string(item.node) + " has a non-finite split");
+    const uint64_t far_child = kd_node_far_child(node);
+    if (far_child <= item.node + 1 || far_child >= tree.nodes.size())
+      throw Error(path, "damaged tree: node " + std::to_string(item.node) + " has an invalid far child");
+    stack.push_back({far_child, item.depth + 1});
+    stack.push_back({item.node + 1, item.depth + 1});
+  }
+  if (expected != tree.nodes.size()) throw Error(path, "damaged tree: unreachable nodes");
+  for (uint32_t triangle : tree.leaf_triangles)
+    if (triangle >= tree.stats.triangles)
+      throw Error(path, "damaged tree: triangle index " + std::to_string(triangle) + " beyond the scene's " +
+                            std::to_string(tree.stats.triangles));
+}
+
+}  // namespace
+
+void write_tree(const std::string& path, const KdTree& tree) {
+  const std::string parameters = to_portable_binary(tree.settings);
+  const std::string statistics = to_portable_binary(tree.stats);
+  const float bounds[6] = {tree.bounds.min.x, tree.bounds.min.y, tree.bounds.min.z,
+                           tree.bounds.max.x, tree.bounds.max.y, tree.bounds.max.z};
+  const std::vector<SectionData> sections = {
+      {format::kTreeNodes, tree.nodes.data(), tree.nodes.size() * sizeof(KdNode)},
+      {format::kTreeLeafTriangles, tree.leaf_triangles.data(), tree.leaf_triangles.size() * sizeof(uint32_t)},
+      {format::kTreeParameters, parameters.data(), parameters.size()},
+      {format::kTreeStatistics, statistics.data(), statistics.size()},
+      {format::kTreeBounds, bounds, sizeof bounds},
+  };
+  write_container(path, ContainerHeaderInfo{format::kTreeMagic, format::kTreeVersion, 0, tree.scene_hash},
+                  sections);
+}
+
+KdTree read_tree(const std::string& path) {
+  KdTree tree;
+  std::string parameters, statistics;
+  float bounds[6] = {};
+  uint32_t seen = 0;
+  auto element_count = [&](uint64_t size, uint64_t element, const char* what) {
+    if (size % element != 0) throw Error(path, std::string("damaged ") + what + " section: odd size");
+    return size / element;
+  };
+  const ContainerContents contents =
+      read_container(path, format::kTreeMagic, format::kTreeVersion, "kdtree", [&](uint32_t id, uint64_t size) -> void* {
+        if (id >= 1 && id <= 5) {
+          if (seen & (1u << id)) throw Error(path, "damaged file: section " + std::to_string(id) + " twice");
+          seen |= 1u << id;
+        }
+        switch (id) {
+          case format::kTreeNodes:
+            tree.nodes.resize(element_count(size, sizeof(KdNode), "node"));
+            return tree.nodes.data();
+          case format::kTreeLeafTriangles:
+            tree.leaf_triangles.resize(element_count(size, sizeof(uint32_t), "leaf-triangle"));
+            return tree.leaf_triangles.data();
+          case format::kTreeParameters:
+            parameters.resize(size);
+            return parameters.data();
+          case format::kTreeStatistics:
+            statistics.resize(size);
+            return statistics.data();
+          case format::kTreeBounds:
+            if (size != sizeof bounds) throw Error(path, "damaged bounds section");
+            return bounds;
+          default:
+            return nullptr;
+        }
+      });
+  if (seen != 0x3eu) throw Error(path, "damaged file: a required section is missing");
+  tree.scene_hash = contents.header.content_hash;
+  tree.settings = from_portable_binary<BuildSettings>(parameters, path, "parameters");
+  tree.stats = from_portable_binary<TreeStats>(statistics, path, "statistics");
+  tree.bounds = Bounds{{bounds[0], bounds[1], bounds[2]}, {bounds[3], bounds[4], bounds[5]}};
+  validate_structure(tree, path);
+  return tree;
+}
+
+void check_tree_matches_scene(const KdTree& tree, const std::string& tree_path, const Scene& scene,
+                              const std::string& scene_path) {
+  if (tree.scene_hash != scene.content_hash)
+    throw Error(tree_path, "stale tree: built for scene " + hash_hex(tree.scene_hash) + ", but " + scene_path +
+                               " has " + hash_hex(scene.content_hash) + ": rebuild with kdbuild");
+  if (tree.stats.triangles != scene.triangle_count())
+    throw Error(tree_path, "tree is for " + std::to_string(tree.stats.triangles) + " triangles, but " + scene_path +
+                               " has " + std::to_string(scene.triangle_count()));
+  for (uint32_t triangle : tree.leaf_triangles)
+    if (triangle >= scene.triangle_count())
+      throw Error(tree_path, "triangle index " + std::to_string(triangle) + " beyond " + scene_path);
+}
+
+}  // namespace kdray

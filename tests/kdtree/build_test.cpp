@@ -1,0 +1,174 @@
+// The SAH builder: degenerate scenes, structure, quality, the reference builder and threads.
+#include "reference_builder.h"
+#include "test_scenes.h"
+
+#include <kdray/error.h>
+#include <kdray/kdtree.h>
+#include <kdray/traverse.h>
+
+#include <test_corpus.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+namespace kdray {
+namespace {
+
+bool same_tree(const KdTree& a, const KdTree& b) {
+  return a.nodes.size() == b.nodes.size() && a.leaf_triangles == b.leaf_triangles &&
+         std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(KdNode)) == 0;
+}
+
+// Every triangle with finite corners is in some leaf.
+void expect_all_triangles_referenced(const Scene& scene, const KdTree& tree) {
+  std::vector<bool> seen(scene.triangle_count(), false);
+  for (uint32_t triangle : tree.leaf_triangles) seen.at(triangle) = true;
+  for (size_t t = 0; t < seen.size(); ++t) EXPECT_TRUE(seen[t]) << "triangle " << t << " is in no leaf";
+}
+
+TEST(KdBuild, EmptySceneIsOneEmptyLeaf) {
+  const KdTree tree = build_kdtree(test::from_triangles({}), BuildSettings{});
+  ASSERT_EQ(tree.nodes.size(), 1u);
+  EXPECT_TRUE(kd_node_is_leaf(tree.nodes[0]));
+  EXPECT_EQ(kd_leaf_count(tree.nodes[0]), 0u);
+  EXPECT_EQ(tree.stats.empty_leaves, 1u);
+}
+
+TEST(KdBuild, SingleTriangleIsOneLeaf) {
+  const KdTree tree = build_kdtree(test::from_triangles({0, 0, 0, 1, 0, 0, 0, 1, 0}), BuildSettings{});
+  ASSERT_EQ(tree.nodes.size(), 1u);
+  EXPECT_EQ(tree.leaf_triangles, std::vector<uint32_t>{0});
+  EXPECT_EQ(tree.bounds.max.x, 1.0f);
+  EXPECT_EQ(tree.bounds.min.z, 0.0f);
+  EXPECT_EQ(tree.bounds.max.z, 0.0f);
+}
+
+TEST(KdBuild, CoplanarSceneWithZeroThicknessBoundsIsValid) {
+  const Scene scene = test::coplanar_grid(32);
+  const KdTree tree = build_kdtree(scene, BuildSettings{});
+  EXPECT_EQ(tree.bounds.min.z, tree.bounds.max.z);
+  EXPECT_GT(tree.stats.inner_nodes, 0u) << "a flat scene still splits along its two extents";
+  for (const KdNode& node : tree.nodes)
+    if (!kd_node_is_leaf(node)) {
+      EXPECT_NE(kd_node_axis(node), 2u) << "no split across the zero thickness";
+    }
+  expect_all_triangles_referenced(scene, tree);
+}
+
+TEST(KdBuild, LineOfDegenerateTrianglesIsALeaf) {
+  // Zero-area triangles along the x axis: the root box has no area, so no split can pay.
+  const KdTree tree = build_kdtree(test::from_triangles({0, 0, 0, 1, 0, 0, 2, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 0}),
+                                   BuildSettings{});
+  ASSERT_EQ(tree.nodes.size(), 1u);
+  EXPECT_EQ(kd_leaf_count(tree.nodes[0]), 2u);
+}
+
+TEST(KdBuild, TrianglesWithNonFiniteCornersAreLeftOut) {
+  const float nan = std::nanf("");
+  const Scene scene = test::from_triangles({0, 0, 0, 1, 0, 0, 0, 1, 0, nan, 0, 0, 1, 1, 1, 0, 1, 1,
+                                            0, 0, 1, INFINITY, 0, 1, 0, 1, 1});
+  const KdTree tree = build_kdtree(scene, BuildSettings{});
+  EXPECT_EQ(tree.leaf_triangles, std::vector<uint32_t>{0});
+  EXPECT_EQ(tree.bounds.max.z, 0.0f) << "the bounds ignore the dropped triangles";
+  EXPECT_EQ(tree.stats.triangles, 3u);
+}
+
+TEST(KdBuild, StatisticsDescribeTheTree) {
+  const Scene scene = test::icosphere(4, {0, 0, 0}, 1);
+  const KdTree tree = build_kdtree(scene, BuildSettings{});
+  const TreeStats& stats = tree.stats;
+  EXPECT_EQ(stats.inner_nodes + stats.leaves, tree.nodes.size());
+  EXPECT_EQ(stats.leaves, stats.inner_nodes + 1);
+  EXPECT_EQ(stats.leaf_references, tree.leaf_triangles.size());
+  EXPECT_GE(stats.references_per_triangle, 1.0);
+  EXPECT_LE(stats.max_depth, BuildSettings{}.resolved_max_depth(scene.triangle_count()));
+  EXPECT_GT(stats.empty_leaves, 0u) << "empty space around a sphere is cut off";
+  EXPECT_GT(stats.sah_cost, 0.0);
+  EXPECT_LT(stats.sah_cost, 20.0 * scene.triangle_count()) << "much cheaper than one leaf";
+  expect_all_triangles_referenced(scene, tree);
+}
+
+TEST(KdBuild, MaxDepthIsRespected) {
+  const Scene scene = test::triangle_soup(2000, 3);
+  BuildSettings settings;
+  settings.max_depth = 3;
+  const KdTree tree = build_kdtree(scene, settings);
+  EXPECT_EQ(tree.stats.max_depth, 3u);
+  EXPECT_EQ(BuildSettings{}.resolved_max_depth(1u << 20), 34u);
+  EXPECT_EQ(BuildSettings{}.resolved_max_depth(uint64_t{1} << 40), BuildSettings::kAutoMaxDepthCap);
+}
+
+TEST(KdBuild, RejectsSettingsOutOfRange) {
+  const Scene scene = test::triangle_soup(10, 1);
+  BuildSettings settings;
+  settings.max_depth = BuildSettings::kMaxDepthLimit + 1;
+  EXPECT_THROW(build_kdtree(scene, settings), Error);
+  settings = BuildSettings{};
+  settings.empty_bonus = 0.0f;
+  EXPECT_THROW(build_kdtree(scene, settings), Error);
+  settings = BuildSettings{};
+  settings.intersection_cost = -1.0f;
+  EXPECT_THROW(build_kdtree(scene, settings), Error);
+}
+
+TEST(KdBuild, HigherTraversalCostGivesShallowerTree) {
+  const Scene scene = test::triangle_soup(3000, 5);
+  BuildSettings expensive;
+  expensive.traversal_cost = 200.0f;
+  EXPECT_LT(build_kdtree(scene, expensive).stats.inner_nodes, build_kdtree(scene, BuildSettings{}).stats.inner_nodes);
+}
+
+TEST(KdBuild, PerfectSplitsLowerTheCostOfTheCornellRoom) {
+  const Scene scene = test::box_room();
+  BuildSettings bounding_boxes;
+  bounding_boxes.perfect_splits = false;
+  EXPECT_LE(build_kdtree(scene, BuildSettings{}).stats.sah_cost, build_kdtree(scene, bounding_boxes).stats.sah_cost);
+}
+
+TEST(KdBuild, ReferenceBuilderAgreesOnGeneratedScenes) {
+  BuildSettings no_clipping;
+  no_clipping.perfect_splits = false;
+  for (const Scene& scene : {test::icosphere(3, {0.5f, 0, 0}, 2), test::box_room(), test::triangle_soup(3000, 11),
+                             test::coplanar_grid(16)}) {
+    for (const BuildSettings& settings : {BuildSettings{}, no_clipping}) {
+      const KdTree fast = build_kdtree(scene, settings);
+      const KdTree reference = test::build_kdtree_by_resorting(scene, settings);
+      EXPECT_TRUE(same_tree(fast, reference)) << scene.triangle_count() << " triangles, nodes " << fast.nodes.size()
+                                              << " vs " << reference.nodes.size();
+      EXPECT_EQ(fast.stats.sah_cost, reference.stats.sah_cost);
+    }
+  }
+}
+
+TEST(KdBuild, ReferenceBuilderAgreesOnTheBunny) {
+  std::string path;
+  KDRAY_CORPUS_FILE(path, "bunny/bun_zipper.ply");
+  const Scene scene = test::mesh_file(path);
+  EXPECT_TRUE(same_tree(build_kdtree(scene, BuildSettings{}), test::build_kdtree_by_resorting(scene, BuildSettings{})));
+}
+
+TEST(KdBuild, ThreadCountDoesNotChangeTheTree) {
+  const Scene scene = test::triangle_soup(60000, 17);
+  const KdTree one = build_kdtree(scene, BuildSettings{}, BuildControl{1, {}});
+  for (unsigned threads : {2u, 3u, 8u}) {
+    const KdTree many = build_kdtree(scene, BuildSettings{}, BuildControl{threads, {}});
+    EXPECT_TRUE(same_tree(one, many)) << threads << " threads";
+  }
+}
+
+TEST(KdBuild, ProgressEndsAtOne) {
+  const Scene scene = test::triangle_soup(20000, 2);
+  double last = 0;
+  bool monotone = true;
+  build_kdtree(scene, BuildSettings{}, BuildControl{2, [&](double fraction) {
+                                                      monotone = monotone && fraction >= last;
+                                                      last = fraction;
+                                                    }});
+  EXPECT_TRUE(monotone);
+  EXPECT_DOUBLE_EQ(last, 1.0);
+}
+
+}  // namespace
+}  // namespace kdray

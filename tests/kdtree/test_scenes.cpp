@@ -1,0 +1,218 @@
+#include "test_scenes.h"
+
+#include <kdray/import.h>
+
+#include <kernels/kd_geometry.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <utility>
+
+namespace kdray::test {
+namespace {
+
+Scene finish(Scene scene) {
+  scene.material_ids.assign(scene.triangle_count(), 0);
+  scene.materials.resize(1);
+  scene.content_hash = compute_content_hash(scene);
+  return scene;
+}
+
+void add_quad(Scene& scene, Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+  const uint32_t base = static_cast<uint32_t>(scene.positions.size());
+  scene.positions.insert(scene.positions.end(), {a, b, c, d});
+  scene.indices.insert(scene.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+}
+
+// The 6 faces of an axis-aligned box, as quads with outward winding.
+void add_box(Scene& scene, Vec3 lo, Vec3 hi) {
+  add_quad(scene, {lo.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, lo.y, lo.z});
+  add_quad(scene, {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z});
+  add_quad(scene, {lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z});
+  add_quad(scene, {lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}, {hi.x, hi.y, lo.z});
+  add_quad(scene, {lo.x, lo.y, lo.z}, {lo.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}, {lo.x, hi.y, lo.z});
+  add_quad(scene, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z});
+}
+
+uint64_t next_random(uint64_t& state) {
+  uint64_t z = (state += 0x9e3779b97f4a7c15ull);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+float unit_random(uint64_t& state) { return static_cast<float>(next_random(state) >> 40) * 0x1.0p-24f; }
+
+void corners(const Scene& scene, uint32_t triangle, double out[3][3]) {
+  for (int c = 0; c < 3; ++c) {
+    const Vec3& p = scene.positions[scene.indices[3 * triangle + c]];
+    out[c][0] = p.x;
+    out[c][1] = p.y;
+    out[c][2] = p.z;
+  }
+}
+
+}  // namespace
+
+Scene icosphere(int subdivisions, Vec3 centre, float radius) {
+  const double g = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<std::array<double, 3>> points = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                                               {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  std::vector<uint32_t> faces = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2,
+                                 10, 7, 6, 7, 1, 8, 3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11,
+                                 6, 2, 10, 8, 6, 7, 9, 8, 1};
+  for (auto& p : points) {
+    const double length = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    for (double& x : p) x /= length;
+  }
+  for (int level = 0; level < subdivisions; ++level) {
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
+    auto midpoint = [&](uint32_t a, uint32_t b) {
+      const auto key = std::minmax(a, b);
+      auto found = midpoints.find(key);
+      if (found != midpoints.end()) return found->second;
+      std::array<double, 3> m;
+      double length = 0;
+      for (int k = 0; k < 3; ++k) {
+        m[k] = 0.5 * (points[a][k] + points[b][k]);
+        length += m[k] * m[k];
+      }
+      for (double& x : m) x /= std::sqrt(length);
+      points.push_back(m);
+      return midpoints[key] = static_cast<uint32_t>(points.size() - 1);
+    };
+    std::vector<uint32_t> finer;
+    for (size_t f = 0; f < faces.size(); f += 3) {
+      const uint32_t a = faces[f], b = faces[f + 1], c = faces[f + 2];
+      const uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+      finer.insert(finer.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+    }
+    faces = std::move(finer);
+  }
+  Scene scene;
+  for (const auto& p : points)
+    scene.positions.push_back({static_cast<float>(centre.x + radius * p[0]), static_cast<float>(centre.y + radius * p[1]),
+                               static_cast<float>(centre.z + radius * p[2])});
+  scene.indices = faces;
+  return finish(std::move(scene));
+}
+
+Scene box_room() {
+  Scene scene;
+  add_box(scene, {-1, 0, -1}, {1, 2, 1});
+  add_box(scene, {-0.7f, 0, -0.6f}, {-0.1f, 1.2f, 0.0f});
+  add_box(scene, {0.1f, 0, 0.1f}, {0.7f, 0.6f, 0.7f});
+  return finish(std::move(scene));
+}
+
+Scene triangle_soup(size_t count, uint64_t seed) {
+  Scene scene;
+  uint64_t state = seed;
+  for (size_t i = 0; i < count; ++i) {
+    const Vec3 centre{unit_random(state), unit_random(state), unit_random(state)};
+    const uint32_t base = static_cast<uint32_t>(scene.positions.size());
+    for (int c = 0; c < 3; ++c)
+      scene.positions.push_back({centre.x + 0.1f * (unit_random(state) - 0.5f), centre.y + 0.1f * (unit_random(state) - 0.5f),
+                                 centre.z + 0.1f * (unit_random(state) - 0.5f)});
+    scene.indices.insert(scene.indices.end(), {base, base + 1, base + 2});
+  }
+  return finish(std::move(scene));
+}
+
+Scene coplanar_grid(int cells) {
+  Scene scene;
+  for (int y = 0; y < cells; ++y)
+    for (int x = 0; x < cells; ++x) {
+      const float x0 = static_cast<float>(x) / cells, x1 = static_cast<float>(x + 1) / cells;
+      const float y0 = static_cast<float>(y) / cells, y1 = static_cast<float>(y + 1) / cells;
+      add_quad(scene, {x0, y0, 0.25f}, {x1, y0, 0.25f}, {x1, y1, 0.25f}, {x0, y1, 0.25f});
+    }
+  return finish(std::move(scene));
+}
+
+Scene from_triangles(const std::vector<float>& corners_xyz) {
+  Scene scene;
+  for (size_t i = 0; i + 2 < corners_xyz.size(); i += 3) {
+    scene.positions.push_back({corners_xyz[i], corners_xyz[i + 1], corners_xyz[i + 2]});
+    scene.indices.push_back(static_cast<uint32_t>(scene.indices.size()));
+  }
+  return finish(std::move(scene));
+}
+
+Scene mesh_file(const std::string& path) {
+  Scene scene = import_scene(path, ImportOptions{});
+  scene.content_hash = compute_content_hash(scene);
+  return scene;
+}
+
+bool is_origin_hit(const Scene& scene, const RayRecord& ray, const HitRecord& hit) {
+  if (hit.triangle == KD_NO_HIT) return false;
+  const double scale = std::max({1.0, std::fabs(double(ray.ox)), std::fabs(double(ray.oy)), std::fabs(double(ray.oz))});
+  return std::fabs(double_test(scene, ray, hit.triangle).t) <= 1e-6 * scale;
+}
+
+HitRecord brute_force_float(const Scene& scene, const RayRecord& record, bool skip_origin_hits) {
+  HitRecord best{INFINITY, KD_NO_HIT, 0, 0};
+  KdRay ray;
+  if (!kd_ray_setup(&ray, record.ox, record.oy, record.oz, record.dx, record.dy, record.dz, record.tmin, record.tmax))
+    return best;
+  float t_max = record.tmax;
+  for (uint32_t triangle = 0; triangle < scene.triangle_count(); ++triangle) {
+    const float* a = &scene.positions[scene.indices[3 * triangle]].x;
+    const float* b = &scene.positions[scene.indices[3 * triangle + 1]].x;
+    const float* c = &scene.positions[scene.indices[3 * triangle + 2]].x;
+    float t, u, v;
+    if (kd_ray_triangle(&ray, a, b, c, t_max, &t, &u, &v)) {
+      if (skip_origin_hits && is_origin_hit(scene, record, HitRecord{t, triangle, u, v})) continue;
+      best = HitRecord{t, triangle, u, v};
+      t_max = t;
+    }
+  }
+  return best;
+}
+
+DoubleHit double_test(const Scene& scene, const RayRecord& ray, uint32_t triangle) {
+  const double origin[3] = {ray.ox, ray.oy, ray.oz};
+  const double direction[3] = {ray.dx, ray.dy, ray.dz};
+  int kz = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::fabs(direction[k]) > std::fabs(direction[kz])) kz = k;
+  int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+  if (direction[kz] < 0) std::swap(kx, ky);
+  const double sx = direction[kx] / direction[kz], sy = direction[ky] / direction[kz], sz = 1.0 / direction[kz];
+  double p[3][3];
+  corners(scene, triangle, p);
+  double x[3], y[3], z[3];
+  for (int c = 0; c < 3; ++c) {
+    for (int k = 0; k < 3; ++k) p[c][k] -= origin[k];
+    x[c] = p[c][kx] - sx * p[c][kz];
+    y[c] = p[c][ky] - sy * p[c][kz];
+    z[c] = sz * p[c][kz];
+  }
+  const double U = x[2] * y[1] - y[2] * x[1];
+  const double V = x[0] * y[2] - y[0] * x[2];
+  const double W = x[1] * y[0] - y[1] * x[0];
+  const double det = U + V + W;
+  DoubleHit result;
+  if (det == 0.0 || !std::isfinite(det)) return result;
+  result.triangle = triangle;
+  result.margin = std::min({U / det, V / det, W / det});
+  result.t = (U * z[0] + V * z[1] + W * z[2]) / det;
+  const bool same_signs = (U >= 0 && V >= 0 && W >= 0) || (U <= 0 && V <= 0 && W <= 0);
+  result.hit = same_signs && result.t > ray.tmin && result.t < ray.tmax;
+  return result;
+}
+
+DoubleHit brute_force_double(const Scene& scene, const RayRecord& ray) {
+  DoubleHit best;
+  const double scale = std::max({1.0, std::fabs(double(ray.ox)), std::fabs(double(ray.oy)), std::fabs(double(ray.oz))});
+  for (uint32_t triangle = 0; triangle < scene.triangle_count(); ++triangle) {
+    const DoubleHit candidate = double_test(scene, ray, triangle);
+    if (candidate.t <= 1e-6 * scale) continue;  // the triangle the ray starts on
+    if (candidate.hit && (!best.hit || candidate.t < best.t)) best = candidate;
+  }
+  return best;
+}
+
+}  // namespace kdray::test

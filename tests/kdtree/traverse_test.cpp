@@ -1,0 +1,214 @@
+// CPU traversal against brute force (float and double precision), stack variants, any-hit,
+// and closed meshes that rays from inside must never leave.
+#include "test_scenes.h"
+
+#include <kdray/kdtree.h>
+#include <kdray/ray_sets.h>
+#include <kdray/traverse.h>
+
+#include <test_corpus.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+namespace kdray {
+namespace {
+
+// The traversal must find what testing every triangle with the same float test finds: the
+// same triangle and t, or, where the ray meets several triangles at one point (a shared vertex
+// or edge), another of them, whose t may differ from the brute force's by rounding. A ray that
+// starts on a triangle may or may not report it at a rounding-sized t (the tree skips the side
+// of a split plane the ray leaves), so such origin hits are ignored on both sides.
+bool same_hit_or_tie(const HitRecord& found, const HitRecord& expected) {
+  if (found.triangle == expected.triangle) return found.t == expected.t || found.triangle == KD_NO_HIT;
+  if (found.triangle == KD_NO_HIT || expected.triangle == KD_NO_HIT) return false;
+  return std::fabs(found.t - expected.t) <= 4e-7f * std::fabs(expected.t);
+}
+
+void expect_same_as_float_brute_force(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
+                                      TraversalStack stack) {
+  std::vector<HitRecord> hits;
+  trace_closest(scene, tree, rays, hits, {0, stack});
+  size_t failures = 0;
+  for (size_t i = 0; i < rays.size() && failures < 10; ++i) {
+    const HitRecord expected = test::brute_force_float(scene, rays[i]);
+    if (same_hit_or_tie(hits[i], expected)) continue;
+    if (test::is_origin_hit(scene, rays[i], expected) || test::is_origin_hit(scene, rays[i], hits[i])) {
+      if (test::is_origin_hit(scene, rays[i], hits[i])) continue;
+      if (same_hit_or_tie(hits[i], test::brute_force_float(scene, rays[i], true))) continue;
+    }
+    ++failures;
+    ADD_FAILURE() << "ray " << i << " (" << rays[i].ox << " " << rays[i].oy << " " << rays[i].oz << " -> "
+                  << rays[i].dx << " " << rays[i].dy << " " << rays[i].dz << "): tree t=" << hits[i].t
+                  << " triangle " << hits[i].triangle << ", brute force t=" << expected.t << " triangle "
+                  << expected.triangle;
+  }
+}
+
+// Against double precision: hit/miss and t agree, except for rays that graze an edge (the
+// closest triangle's smallest barycentric within `kGraze` of 0), where float and double may
+// fall on different sides. Returns the number of such grazing rays.
+size_t expect_close_to_double_brute_force(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays) {
+  constexpr double kGraze = 1e-5, kRelativeT = 1e-5;
+  std::vector<HitRecord> hits;
+  trace_closest(scene, tree, rays, hits);
+  size_t grazing = 0, failures = 0;
+  for (size_t i = 0; i < rays.size() && failures < 10; ++i) {
+    const test::DoubleHit exact = test::brute_force_double(scene, rays[i]);
+    const HitRecord& found = hits[i];
+    bool ok;
+    if (found.triangle == KD_NO_HIT) {
+      ok = !exact.hit || exact.margin < kGraze;
+    } else {
+      const test::DoubleHit same = test::double_test(scene, rays[i], found.triangle);
+      const bool t_agrees = std::fabs(same.t - found.t) <= kRelativeT * std::max(1.0, std::fabs(same.t));
+      const bool nothing_closer = !exact.hit || exact.t >= found.t - kRelativeT * std::max(1.0, static_cast<double>(std::fabs(found.t)));
+      const bool closer_one_grazes = exact.hit && exact.margin < kGraze;
+      ok = same.triangle != KD_NO_HIT && same.margin > -kGraze && t_agrees && (nothing_closer || closer_one_grazes);
+    }
+    if (exact.hit && exact.margin < kGraze) ++grazing;
+    if (ok) continue;
+    ++failures;
+    ADD_FAILURE() << "ray " << i << ": tree t=" << found.t << " triangle " << found.triangle << ", double "
+                  << (exact.hit ? "hit" : "miss") << " t=" << exact.t << " triangle " << exact.triangle
+                  << " margin " << exact.margin;
+  }
+  return grazing;
+}
+
+std::vector<RayRecord> mixed_rays(const Scene& scene, const KdTree& tree, size_t count, uint64_t seed) {
+  std::vector<RayRecord> rays = random_rays(tree.bounds, count / 2, seed);
+  const std::vector<RayRecord> hard = hard_case_rays(scene, tree, count - count / 2, seed + 1);
+  rays.insert(rays.end(), hard.begin(), hard.end());
+  return rays;
+}
+
+TEST(KdTraverse, MatchesFloatBruteForceOnGeneratedScenes) {
+  for (const Scene& scene : {test::icosphere(3, {0, 0, 0}, 1), test::box_room(), test::triangle_soup(2000, 4),
+                             test::coplanar_grid(8)}) {
+    const KdTree tree = build_kdtree(scene, BuildSettings{});
+    const std::vector<RayRecord> rays = mixed_rays(scene, tree, 6000, 21);
+    for (TraversalStack stack : {TraversalStack::Short, TraversalStack::Depth1, TraversalStack::Full})
+      expect_same_as_float_brute_force(scene, tree, rays, stack);
+  }
+}
+
+TEST(KdTraverse, MatchesFloatBruteForceOnTheBunny) {
+  std::string path;
+  KDRAY_CORPUS_FILE(path, "bunny/bun_zipper.ply");
+  const Scene scene = test::mesh_file(path);
+  const KdTree tree = build_kdtree(scene, BuildSettings{});
+  expect_same_as_float_brute_force(scene, tree, mixed_rays(scene, tree, 3000, 5), TraversalStack::Short);
+}
+
+TEST(KdTraverse, MatchesDoublePrecisionBruteForce) {
+  std::string path;
+  KDRAY_CORPUS_FILE(path, "dragon/dragon_vcg_23k.ply");
+  for (const Scene& scene : {test::mesh_file(path), test::box_room()}) {
+    const KdTree tree = build_kdtree(scene, BuildSettings{});
+    const std::vector<RayRecord> rays = mixed_rays(scene, tree, 2000, 9);
+    const size_t grazing = expect_close_to_double_brute_force(scene, tree, rays);
+    EXPECT_LT(grazing, rays.size() / 4) << "grazing rays are the exception";
+  }
+}
+
+TEST(KdTraverse, DepthOneStackGivesTheSameHitsAsTheFullStack) {
+  const Scene scene = test::triangle_soup(20000, 8);
+  const KdTree tree = build_kdtree(scene, BuildSettings{});
+  ASSERT_GT(tree.stats.max_depth, 10u) << "deep enough to force restarts";
+  const std::vector<RayRecord> rays = mixed_rays(scene, tree, 40000, 13);
+  std::vector<HitRecord> full, depth1, short_stack;
+  trace_closest(scene, tree, rays, full, {0, TraversalStack::Full});
+  trace_closest(scene, tree, rays, depth1, {0, TraversalStack::Depth1});
+  trace_closest(scene, tree, rays, short_stack, {0, TraversalStack::Short});
+  EXPECT_EQ(0, std::memcmp(full.data(), depth1.data(), full.size() * sizeof(HitRecord)));
+  EXPECT_EQ(0, std::memcmp(full.data(), short_stack.data(), full.size() * sizeof(HitRecord)));
+}
+
+TEST(KdTraverse, AnyHitAgreesWithClosestHit) {
+  const Scene scene = test::box_room();
+  const KdTree tree = build_kdtree(scene, BuildSettings{});
+  std::vector<RayRecord> rays = mixed_rays(scene, tree, 8000, 3);
+  for (size_t i = 0; i < rays.size(); i += 2) rays[i].tmax = 0.5f;  // shadow rays of finite length
+  std::vector<HitRecord> hits;
+  std::vector<uint8_t> occluded;
+  for (TraversalStack stack : {TraversalStack::Short, TraversalStack::Depth1}) {
+    trace_closest(scene, tree, rays, hits, {0, stack});
+    trace_any(scene, tree, rays, occluded, {0, stack});
+    for (size_t i = 0; i < rays.size(); ++i)
+      ASSERT_EQ(occluded[i] != 0, hits[i].triangle != KD_NO_HIT) << "ray " << i;
+  }
+}
+
+TEST(KdTraverse, RayIntervalIsOpenAtBothEnds) {
+  const Scene scene = test::from_triangles({-1, -1, 2, 1, -1, 2, 0, 1, 2});
+  const KdTree tree = build_kdtree(scene, BuildSettings{});
+  RayRecord ray{0, 0, 0, 0, 0, 1, 0, INFINITY};
+  EXPECT_FLOAT_EQ(intersect_closest(scene, tree, ray).t, 2.0f);
+  ray.tmax = 2.0f;
+  EXPECT_EQ(intersect_closest(scene, tree, ray).triangle, KD_NO_HIT);
+  ray.tmax = INFINITY;
+  ray.tmin = 2.0f;
+  EXPECT_EQ(intersect_closest(scene, tree, ray).triangle, KD_NO_HIT);
+  const HitRecord miss = intersect_closest(scene, tree, RayRecord{0, 0, 0, 0, 0, -1, 0, INFINITY});
+  EXPECT_TRUE(std::isinf(miss.t));
+  EXPECT_EQ(miss.triangle, KD_NO_HIT);
+}
+
+TEST(KdTraverse, NonFiniteRaysMiss) {
+  const Scene scene = test::box_room();
+  const KdTree tree = build_kdtree(scene, BuildSettings{});
+  const float nan = std::nanf("");
+  for (const RayRecord& ray : {RayRecord{nan, 0.5f, 0, 1, 0, 0, 0, INFINITY}, RayRecord{0, 0.5f, 0, 0, 0, 0, 0, INFINITY},
+                               RayRecord{0, 0.5f, 0, nan, 1, 0, 0, INFINITY}, RayRecord{0, 0.5f, 0, 1, 0, 0, 0, nan}})
+    EXPECT_EQ(intersect_closest(scene, tree, ray).triangle, KD_NO_HIT);
+}
+
+// Rays from a point inside a closed mesh, aimed at its vertices, edges and random surface
+// points: every one must hit the mesh.
+void expect_no_escape(const Scene& scene, const Vec3& inside, size_t count) {
+  const KdTree tree = build_kdtree(scene, BuildSettings{});
+  const std::vector<RayRecord> rays = rays_toward_surface(scene, inside, count, 77);
+  std::vector<uint8_t> occluded;
+  trace_any(scene, tree, rays, occluded);
+  size_t escaped = 0;
+  for (uint8_t hit : occluded) escaped += hit ? 0 : 1;
+  EXPECT_EQ(escaped, 0u) << "of " << rays.size() << " rays from inside";
+  std::vector<HitRecord> hits;
+  trace_closest(scene, tree, rays, hits, {0, TraversalStack::Depth1});
+  escaped = 0;
+  for (const HitRecord& hit : hits) escaped += hit.triangle == KD_NO_HIT ? 1 : 0;
+  EXPECT_EQ(escaped, 0u) << "closest hit, depth-1 stack";
+}
+
+// Scaled down under sanitizers by KDRAY_TEST_RAY_SCALE (e.g. 0.1).
+size_t scaled(size_t count) {
+  const char* scale = std::getenv("KDRAY_TEST_RAY_SCALE");
+  return scale ? static_cast<size_t>(count * std::atof(scale)) : count;
+}
+
+TEST(KdTraverse, RaysFromInsideTheIcosphereNeverEscape) {
+  expect_no_escape(test::icosphere(3, {0.1f, -0.2f, 0.05f}, 1.0f), {0.1f, -0.2f, 0.05f}, scaled(1000000));
+}
+
+TEST(KdTraverse, RaysFromInsideTheClosedBunnyNeverEscape) {
+  std::string path;
+  KDRAY_CORPUS_FILE(path, "bunny/bunny_vn_euclid.ply");
+  const Scene scene = test::mesh_file(path);
+  // Inside: halfway between where a ray through the middle enters the mesh and leaves it.
+  const Bounds bounds = scene_bounds(scene);
+  RayRecord probe{bounds.min.x - 1.0f, 0.5f * (bounds.min.y + bounds.max.y), 0.5f * (bounds.min.z + bounds.max.z),
+                  1, 0, 0, 0, INFINITY};
+  const float enter = test::brute_force_float(scene, probe).t;
+  probe.tmin = enter;
+  const float leave = test::brute_force_float(scene, probe).t;
+  ASSERT_TRUE(std::isfinite(enter) && std::isfinite(leave));
+  const Vec3 inside{probe.ox + 0.5f * (enter + leave), probe.oy, probe.oz};
+  expect_no_escape(scene, inside, scaled(1000000));
+}
+
+}  // namespace
+}  // namespace kdray

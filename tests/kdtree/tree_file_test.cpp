@@ -1,0 +1,162 @@
+// The .kdtree file: round trip, damage, structural validation and stale trees.
+#include "test_scenes.h"
+
+#include <kdray/container_file.h>
+#include <kdray/kdtree.h>
+
+#include <test_corpus.h>
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+namespace kdray {
+namespace {
+
+class KdTreeFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = test::make_temp_dir("kdtree-file");
+    scene_ = test::icosphere(2, {0, 0, 0}, 1);
+    tree_ = build_kdtree(scene_, BuildSettings{});
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  std::vector<char> bytes_of(const std::string& file) const {
+    std::ifstream in(file, std::ios::binary);
+    return std::vector<char>(std::istreambuf_iterator<char>(in), {});
+  }
+  void write_bytes(const std::string& file, const std::vector<char>& bytes) const {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+  std::string read_error(const std::string& file) const {
+    try {
+      read_tree(file);
+    } catch (const Error& error) {
+      return error.what();
+    }
+    return "";
+  }
+
+  std::filesystem::path dir_;
+  Scene scene_;
+  KdTree tree_;
+};
+
+TEST_F(KdTreeFile, RoundTripKeepsEverything) {
+  BuildSettings settings;
+  settings.traversal_cost = 10;
+  settings.max_depth = 12;
+  settings.perfect_splits = false;
+  const KdTree tree = build_kdtree(scene_, settings);
+  write_tree(path("a.kdtree"), tree);
+  const KdTree back = read_tree(path("a.kdtree"));
+  EXPECT_EQ(back.scene_hash, scene_.content_hash);
+  ASSERT_EQ(back.nodes.size(), tree.nodes.size());
+  EXPECT_EQ(0, std::memcmp(back.nodes.data(), tree.nodes.data(), tree.nodes.size() * sizeof(KdNode)));
+  EXPECT_EQ(back.leaf_triangles, tree.leaf_triangles);
+  EXPECT_EQ(back.settings.traversal_cost, 10.0f);
+  EXPECT_EQ(back.settings.max_depth, 12u);
+  EXPECT_FALSE(back.settings.perfect_splits);
+  EXPECT_EQ(back.stats.sah_cost, tree.stats.sah_cost);
+  EXPECT_EQ(back.stats.leaves, tree.stats.leaves);
+  EXPECT_EQ(back.bounds.max.y, tree.bounds.max.y);
+  EXPECT_NO_THROW(check_tree_matches_scene(back, "a.kdtree", scene_, "s.kdscene"));
+}
+
+TEST_F(KdTreeFile, SameTreeGivesTheSameBytes) {
+  write_tree(path("a.kdtree"), tree_);
+  write_tree(path("b.kdtree"), build_kdtree(scene_, BuildSettings{}, BuildControl{1, {}}));
+  EXPECT_EQ(bytes_of(path("a.kdtree")), bytes_of(path("b.kdtree")));
+}
+
+TEST_F(KdTreeFile, FlippedPayloadByteIsRejected) {
+  write_tree(path("a.kdtree"), tree_);
+  std::vector<char> bytes = bytes_of(path("a.kdtree"));
+  bytes[bytes.size() - 5] ^= 0x10;
+  write_bytes(path("a.kdtree"), bytes);
+  EXPECT_NE(read_error(path("a.kdtree")).find("checksum"), std::string::npos) << read_error(path("a.kdtree"));
+}
+
+TEST_F(KdTreeFile, TruncatedFileIsRejected) {
+  write_tree(path("a.kdtree"), tree_);
+  std::vector<char> bytes = bytes_of(path("a.kdtree"));
+  bytes.resize(bytes.size() / 2);
+  write_bytes(path("a.kdtree"), bytes);
+  EXPECT_NE(read_error(path("a.kdtree")), "");
+}
+
+TEST_F(KdTreeFile, SceneFileIsNotATree) {
+  write_bytes(path("a.kdtree"), std::vector<char>{'K', 'D', 'S', 'C', 'E', 'N', 'E', '\0', 1, 2, 3});
+  EXPECT_NE(read_error(path("a.kdtree")).find("a.kdtree"), std::string::npos);
+  EXPECT_NE(read_error(path("missing.kdtree")), "");
+}
+
+// Structural damage with a valid checksum: what a buggy writer could produce.
+TEST_F(KdTreeFile, InvalidStructureIsRejected) {
+  auto expect_rejected = [&](KdTree tree, const char* what, const char* expected) {
+    write_tree(path("bad.kdtree"), tree);
+    const std::string error = read_error(path("bad.kdtree"));
+    EXPECT_NE(error.find(expected), std::string::npos) << what << ": " << error;
+  };
+  ASSERT_FALSE(kd_node_is_leaf(tree_.nodes[0]));
+  KdTree tree = tree_;
+  tree.nodes[0].header = static_cast<uint32_t>(tree.nodes.size() + 5) << 2 | kd_node_axis(tree.nodes[0]);
+  expect_rejected(tree, "far child out of range", "far child");
+  tree = tree_;
+  tree.nodes[0].header = 1u << 2 | kd_node_axis(tree.nodes[0]);
+  expect_rejected(tree, "far child = near child", "far child");
+  tree = tree_;
+  for (KdNode& node : tree.nodes)
+    if (kd_node_is_leaf(node) && kd_leaf_count(node) > 0) {
+      node.payload = static_cast<uint32_t>(tree.leaf_triangles.size());
+      break;
+    }
+  expect_rejected(tree, "leaf range past the array", "leaf array");
+  tree = tree_;
+  tree.leaf_triangles[0] = static_cast<uint32_t>(scene_.triangle_count());
+  expect_rejected(tree, "triangle index", "triangle index");
+  tree = tree_;
+  tree.nodes.push_back(tree.nodes.back());
+  expect_rejected(tree, "extra node", "unreachable");
+  tree = tree_;
+  tree.nodes.clear();
+  expect_rejected(tree, "no nodes", "no nodes");
+}
+
+TEST_F(KdTreeFile, TreeDeeperThanTheFullStackIsRejected) {
+  // A chain of inner nodes whose near child is a leaf: depth 70.
+  KdTree tree;
+  tree.stats.triangles = 0;
+  for (uint32_t level = 0; level < 70; ++level) {
+    const uint32_t index = static_cast<uint32_t>(tree.nodes.size());
+    tree.nodes.push_back(KdNode{0, (index + 2) << 2 | 0u});
+    tree.nodes.push_back(KdNode{0, KD_LEAF_TAG});
+  }
+  tree.nodes.push_back(KdNode{0, KD_LEAF_TAG});
+  write_tree(path("deep.kdtree"), tree);
+  EXPECT_NE(read_error(path("deep.kdtree")).find("deeper"), std::string::npos) << read_error(path("deep.kdtree"));
+}
+
+TEST_F(KdTreeFile, StaleTreeNamesBothHashes) {
+  const Scene other = test::icosphere(2, {0, 0, 0}, 2);
+  try {
+    check_tree_matches_scene(tree_, "t.kdtree", other, "other.kdscene");
+    FAIL() << "a stale tree was accepted";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("stale tree"), std::string::npos) << message;
+    EXPECT_NE(message.find(hash_hex(scene_.content_hash)), std::string::npos) << message;
+    EXPECT_NE(message.find(hash_hex(other.content_hash)), std::string::npos) << message;
+    EXPECT_NE(message.find("other.kdscene"), std::string::npos) << message;
+    EXPECT_NE(message.find("rebuild with kdbuild"), std::string::npos) << message;
+  }
+}
+
+}  // namespace
+}  // namespace kdray

@@ -1,0 +1,116 @@
+// kdbuild SCENE.kdscene OUTPUT.kdtree: builds the SAH k-d tree of a scene and writes it.
+#include <kdray/container_file.h>
+#include <kdray/kdtree.h>
+#include <kdray/scene_file.h>
+
+#include "tool_main.h"
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include <sys/resource.h>
+
+namespace {
+
+double peak_memory_mib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+// Prints "kdbuild: building NN%" on stderr, but only once the build has taken a second.
+class ProgressLine {
+ public:
+  explicit ProgressLine(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+  void update(double fraction) {
+    if (!enabled_ || std::chrono::steady_clock::now() - start_ < std::chrono::seconds(1)) return;
+    std::fprintf(stderr, "\rkdbuild: building %3d%%", static_cast<int>(fraction * 100.0));
+    shown_ = true;
+  }
+  void finish() {
+    if (shown_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  bool enabled_;
+  bool shown_ = false;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using kdray::BuildSettings;
+  CLI::App app{"kdbuild: build the SAH k-d tree of a .kdscene and write it as a .kdtree", "kdbuild"};
+  app.set_version_flag("--version", std::string("kdbuild ") + KDRAY_VERSION);
+  std::string scene_path, tree_path;
+  BuildSettings settings;
+  unsigned threads = 0;
+  bool json = false, quiet = false, no_perfect_splits = false;
+  app.add_option("SCENE", scene_path, "Input scene (.kdscene)")->required()->check(CLI::ExistingFile);
+  app.add_option("OUTPUT", tree_path, "Output tree (.kdtree), written atomically")->required();
+  app.add_option("--kt", settings.traversal_cost, "Cost of traversing an inner node (K_T)")
+      ->capture_default_str()->group("Cost model");
+  app.add_option("--ki", settings.intersection_cost, "Cost of one ray/triangle test (K_I)")
+      ->capture_default_str()->group("Cost model");
+  app.add_option("--empty-bonus", settings.empty_bonus, "Factor lambda on splits that cut off empty space, in (0, 1]")
+      ->capture_default_str()->group("Cost model");
+  app.add_option("--max-depth", settings.max_depth,
+                 "Depth limit; 0: 8 + 1.3 log2 N, at most " + std::to_string(BuildSettings::kAutoMaxDepthCap) +
+                     " (limit " + std::to_string(BuildSettings::kMaxDepthLimit) + ")")
+      ->capture_default_str()->group("Tree");
+  app.add_flag("--no-perfect-splits", no_perfect_splits,
+               "Take candidate planes from triangle bounding boxes instead of triangles clipped to the voxel")
+      ->group("Tree");
+  app.add_option("--threads", threads, "Build threads; 0: all cores (the tree is the same for any count)")
+      ->capture_default_str()->group("Run");
+  app.add_flag("--json", json, "Print the statistics as JSON on stdout")->group("Output");
+  app.add_flag("-q,--quiet", quiet, "No progress on stderr")->group("Output");
+
+  return kdray::tool::run(app, argc, argv, [&] {
+    settings.perfect_splits = !no_perfect_splits;
+    const auto start = std::chrono::steady_clock::now();
+    const kdray::Scene scene = kdray::read_scene(scene_path);
+    const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    ProgressLine progress(!quiet);
+    const auto build_start = std::chrono::steady_clock::now();
+    const kdray::KdTree tree =
+        kdray::build_kdtree(scene, settings, {threads, [&](double fraction) { progress.update(fraction); }});
+    const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
+    progress.finish();
+    kdray::write_tree(tree_path, tree);
+
+    const kdray::TreeStats& s = tree.stats;
+    if (json) {
+      nlohmann::json out = {
+          {"scene", scene_path}, {"tree", tree_path}, {"scene_hash", kdray::hash_hex(tree.scene_hash)},
+          {"triangles", s.triangles}, {"sah_cost", s.sah_cost}, {"inner_nodes", s.inner_nodes},
+          {"leaves", s.leaves}, {"empty_leaves", s.empty_leaves}, {"max_depth", s.max_depth},
+          {"mean_leaf_depth", s.mean_leaf_depth}, {"mean_triangles_per_leaf", s.mean_triangles_per_leaf},
+          {"references_per_triangle", s.references_per_triangle}, {"build_seconds", build_seconds},
+          {"load_seconds", load_seconds}, {"peak_memory_mib", peak_memory_mib()},
+          {"settings", {{"kt", tree.settings.traversal_cost}, {"ki", tree.settings.intersection_cost},
+                        {"empty_bonus", tree.settings.empty_bonus},
+                        {"max_depth", tree.settings.resolved_max_depth(s.triangles)},
+                        {"perfect_splits", tree.settings.perfect_splits}}}};
+      kdray::tool::print_json(out);
+      return kdray::tool::kExitOk;
+    }
+    const double empty_share = s.leaves ? 100.0 * static_cast<double>(s.empty_leaves) / s.leaves : 0.0;
+    std::printf("%s -> %s\n", scene_path.c_str(), tree_path.c_str());
+    std::printf("  triangles                %llu\n", static_cast<unsigned long long>(s.triangles));
+    std::printf("  SAH cost                 %.3f\n", s.sah_cost);
+    std::printf("  inner nodes              %llu\n", static_cast<unsigned long long>(s.inner_nodes));
+    std::printf("  leaves                   %llu (%llu empty, %.1f%%)\n", static_cast<unsigned long long>(s.leaves),
+                static_cast<unsigned long long>(s.empty_leaves), empty_share);
+    std::printf("  leaf depth               max %u, mean %.2f (limit %u)\n", s.max_depth, s.mean_leaf_depth,
+                tree.settings.resolved_max_depth(s.triangles));
+    std::printf("  triangles per leaf       %.2f (non-empty leaves)\n", s.mean_triangles_per_leaf);
+    std::printf("  references per triangle  %.3f\n", s.references_per_triangle);
+    std::printf("  build                    %.3f s (scene load %.3f s)\n", build_seconds, load_seconds);
+    std::printf("  peak memory              %.1f MiB\n", peak_memory_mib());
+    return kdray::tool::kExitOk;
+  });
+}

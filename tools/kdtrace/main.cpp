@@ -1,0 +1,110 @@
+// kdtrace SCENE TREE: closest hit of every ray of a ray file (or of a generated ray set),
+// written as a hit file, with the tracing rate in Mrays/s.
+#include <kdray/kdtree.h>
+#include <kdray/ray_files.h>
+#include <kdray/ray_sets.h>
+#include <kdray/scene_file.h>
+#include <kdray/traverse.h>
+
+#include "tool_main.h"
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <string>
+
+namespace {
+
+// Where the rays are traced. The OpenCL device joins here (librender's kd_trace kernel).
+enum class Device { Cpu };
+
+struct TraceRun {
+  std::vector<HitRecord> hits;
+  double seconds = 0;
+};
+
+TraceRun trace_on(Device device, const kdray::Scene& scene, const kdray::KdTree& tree,
+                  const std::vector<RayRecord>& rays, const kdray::TraceOptions& options) {
+  TraceRun run;
+  const auto start = std::chrono::steady_clock::now();
+  switch (device) {
+    case Device::Cpu: kdray::trace_closest(scene, tree, rays, run.hits, options); break;
+  }
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return run;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"kdtrace: closest hit of every ray against a scene and its k-d tree", "kdtrace"};
+  app.set_version_flag("--version", std::string("kdtrace ") + KDRAY_VERSION);
+  std::string scene_path, tree_path, rays_path, hits_path, generate, write_rays_path, stack_name = "short";
+  Device device = Device::Cpu;
+  size_t count = 1000000;
+  uint32_t width = 1024, height = 768;
+  uint64_t seed = 1;
+  kdray::TraceOptions options;
+  bool json = false;
+  app.add_option("SCENE", scene_path, "Scene (.kdscene)")->required()->check(CLI::ExistingFile);
+  app.add_option("TREE", tree_path, "Its k-d tree (.kdtree, from kdbuild)")->required()->check(CLI::ExistingFile);
+  auto* rays_option = app.add_option("--rays", rays_path, "Ray file to trace (formats/rays.md)")->group("Rays")
+                          ->check(CLI::ExistingFile);
+  auto* generate_option =
+      app.add_option("--generate", generate,
+                     "Trace a generated ray set instead: camera (the scene's first camera, --width x --height), "
+                     "random (origins on the bounding sphere aimed into the box, --count) or hard (GUIDE section 6 "
+                     "cases, --count)")
+          ->check(CLI::IsMember({"camera", "random", "hard"}))->group("Rays");
+  rays_option->excludes(generate_option);
+  app.add_option("--count", count, "Rays of a random or hard set")->capture_default_str()->group("Rays");
+  app.add_option("--width", width, "Camera rays per row")->capture_default_str()->group("Rays");
+  app.add_option("--height", height, "Camera rows")->capture_default_str()->group("Rays");
+  app.add_option("--seed", seed, "Seed of a random or hard set")->capture_default_str()->group("Rays");
+  app.add_option("--write-rays", write_rays_path, "Also write the generated rays to this ray file")->group("Rays");
+  app.add_option("--hits", hits_path, "Hit file to write (formats/rays.md)")->group("Output");
+  app.add_flag("--json", json, "Print the summary as JSON on stdout")->group("Output");
+  app.add_option("--device", device, "Where to trace")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, Device>{{"cpu", Device::Cpu}}))
+      ->default_str("cpu")->group("Run");
+  app.add_option("--threads", options.threads, "CPU threads; 0: all cores")->capture_default_str()->group("Run");
+  app.add_option("--stack", stack_name, "CPU traversal stack: short (8 entries, restart), depth1, full")
+      ->check(CLI::IsMember({"short", "depth1", "full"}))->capture_default_str()->group("Run");
+
+  return kdray::tool::run(app, argc, argv, [&] {
+    if (rays_path.empty() == generate.empty()) {
+      kdray::tool::print_error("kdtrace", "give one of --rays or --generate (see --help)");
+      return kdray::tool::kExitUsage;
+    }
+    const kdray::Scene scene = kdray::read_scene(scene_path);
+    const kdray::KdTree tree = kdray::read_tree(tree_path);
+    kdray::check_tree_matches_scene(tree, tree_path, scene, scene_path);
+
+    std::vector<RayRecord> rays;
+    if (!rays_path.empty()) rays = kdray::read_rays(rays_path);
+    else if (generate == "camera") rays = kdray::camera_rays(scene, width, height);
+    else if (generate == "random") rays = kdray::random_rays(tree.bounds, count, seed);
+    else rays = kdray::hard_case_rays(scene, tree, count, seed);
+    if (!write_rays_path.empty()) kdray::write_rays(write_rays_path, rays);
+
+    options.stack = stack_name == "depth1" ? kdray::TraversalStack::Depth1
+                    : stack_name == "full" ? kdray::TraversalStack::Full
+                                           : kdray::TraversalStack::Short;
+    const TraceRun run = trace_on(device, scene, tree, rays, options);
+    if (!hits_path.empty()) kdray::write_hits(hits_path, run.hits);
+
+    size_t hit_count = 0;
+    for (const HitRecord& hit : run.hits) hit_count += hit.triangle != KD_NO_HIT ? 1 : 0;
+    const double mrays_per_s = run.seconds > 0 ? static_cast<double>(rays.size()) / run.seconds / 1e6 : 0.0;
+    if (json) {
+      kdray::tool::print_json({{"scene", scene_path}, {"tree", tree_path}, {"rays", rays.size()}, {"hits", hit_count},
+                               {"seconds", run.seconds}, {"mrays_per_s", mrays_per_s}, {"device", "cpu"},
+                               {"threads", options.threads}, {"stack", stack_name}});
+      return kdray::tool::kExitOk;
+    }
+    std::printf("%zu rays, %zu hits (%.1f%%) in %.3f s: %.2f Mrays/s\n", rays.size(), hit_count,
+                rays.empty() ? 0.0 : 100.0 * static_cast<double>(hit_count) / static_cast<double>(rays.size()),
+                run.seconds, mrays_per_s);
+    return kdray::tool::kExitOk;
+  });
+}

@@ -30,7 +30,7 @@ size_t count_differences(const std::vector<HitRecord>& a, const std::vector<HitR
 class TraceKernel : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    std::string path = std::string(KDRAY_CORPUS_DIR) + "/bunny/stanford-bunny.obj";
+    std::string path = std::string(KDRAY_CORPUS_DIR) + "/misc/fandisk.obj";
     if (!std::filesystem::exists(path)) return;
     scene_ = new Scene(import_scene(path, ImportOptions{}));
     tree_ = new KdTree(test::tree_for(*scene_));
@@ -43,7 +43,7 @@ class TraceKernel : public ::testing::Test {
   }
   void SetUp() override {
     std::string path;
-    KDRAY_CORPUS_FILE(path, "bunny/stanford-bunny.obj");
+    KDRAY_CORPUS_FILE(path, "misc/fandisk.obj");
   }
   static Scene* scene_;
   static KdTree* tree_;
@@ -51,7 +51,7 @@ class TraceKernel : public ::testing::Test {
 Scene* TraceKernel::scene_ = nullptr;
 KdTree* TraceKernel::tree_ = nullptr;
 
-TEST_F(TraceKernel, HitsEqualTheCpuTraversalOnTheBunny) {
+TEST_F(TraceKernel, HitsEqualTheCpuTraversalOnTheFandisk) {
   std::vector<RayRecord> rays = camera_rays(*scene_, 256, 256);                  // 65,536
   std::vector<RayRecord> random = random_rays(tree_->bounds, 40000, 11);
   std::vector<RayRecord> hard = hard_case_rays(*scene_, *tree_, 40000, 12);

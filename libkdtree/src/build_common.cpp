@@ -157,8 +157,15 @@ CostModel cost_model_of(const BuildSettings& settings) {
 
 void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, uint64_t triangles,
                 const CostModel& cost, SplitChoice& best) {
-  const double area = surface_area(voxel);
-  if (!(area > 0.0)) return;  // a voxel without area: no split can pay
+  // Half the surface area of a child below position p is cross + (p - lo) * girth: the two
+  // faces across the axis plus the four along it.
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  const double extent_u = static_cast<double>(voxel.max[u]) - voxel.min[u];
+  const double extent_v = static_cast<double>(voxel.max[v]) - voxel.min[v];
+  const double cross = extent_u * extent_v, girth = extent_u + extent_v;
+  const double lo = voxel.min[axis], hi = voxel.max[axis];
+  const double half_area = cross + (hi - lo) * girth;
+  if (!(half_area > 0.0)) return;  // a voxel without area: no split can pay
   uint64_t n_left = 0, n_right = triangles;
   size_t i = 0;
   while (i < count) {
@@ -168,8 +175,9 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
     for (; i < count && events[i].position == position && events[i].type() == kEventPlanar; ++i) ++planar;
     for (; i < count && events[i].position == position && events[i].type() == kEventStart; ++i) ++starting;
     n_right -= ending + planar;
-    const double p_left = surface_area(below_plane(voxel, axis, position)) / area;
-    const double p_right = surface_area(above_plane(voxel, axis, position)) / area;
+    // Divided, not multiplied by a reciprocal: a split on the boundary must give exactly 1.
+    const double p_left = (cross + (position - lo) * girth) / half_area;
+    const double p_right = (cross + (hi - position) * girth) / half_area;
     const double planar_left_cost = cost.split_cost(p_left, p_right, n_left + planar, n_right);
     const double planar_right_cost = cost.split_cost(p_left, p_right, n_left, n_right + planar);
     const bool planar_left = planar_left_cost <= planar_right_cost;

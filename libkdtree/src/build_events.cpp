@@ -81,7 +81,12 @@ class EventBuilder {
   // Splits `work` into the two children and releases its memory.
   void divide(NodeWork& work, const SplitChoice& split, NodeWork& left, NodeWork& right) const {
     const size_t n = work.triangles.size();
-    std::vector<uint8_t> sides(n, kBothSides);
+    // Scratch arrays reused by each thread's nodes: allocation dominated small nodes.
+    thread_local std::vector<uint8_t> sides;
+    thread_local std::vector<uint32_t> left_index, right_index;
+    sides.assign(n, kBothSides);
+    left_index.resize(n);
+    right_index.resize(n);
     classify(work.events[split.axis].data(), work.events[split.axis].size(), split, sides.data());
     left.voxel = below_plane(work.voxel, split.axis, split.position);
     right.voxel = above_plane(work.voxel, split.axis, split.position);
@@ -89,7 +94,6 @@ class EventBuilder {
 
     // Local index of each parent triangle in each child: monotone, so the order of the kept
     // events survives. Straddlers get fresh bounds and events in each child they really reach.
-    std::vector<uint32_t> left_index(n, UINT32_MAX), right_index(n, UINT32_MAX);
     std::vector<Event> fresh_left[3], fresh_right[3];
     auto place = [](NodeWork& child, std::vector<uint32_t>& index, std::vector<Event>* fresh, size_t i,
                     uint32_t triangle, const Box3& bounds) {
@@ -99,6 +103,16 @@ class EventBuilder {
       if (fresh)
         for (int axis = 0; axis < 3; ++axis) append_events(fresh[axis], bounds, axis, index[i]);
     };
+    size_t left_count = 0, right_count = 0;
+    for (size_t i = 0; i < n; ++i) {
+      left_count += sides[i] != kRightOnly;
+      right_count += sides[i] != kLeftOnly;
+    }
+    for (NodeWork* child : {&left, &right}) {
+      const size_t count = child == &left ? left_count : right_count;
+      child->triangles.reserve(count);
+      child->bounds.reserve(count);
+    }
     for (size_t i = 0; i < n; ++i) {
       const uint32_t triangle = work.triangles[i];
       if (sides[i] == kLeftOnly) {

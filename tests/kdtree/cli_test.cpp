@@ -1,1 +1,134 @@
+// kdbuild and kdtrace from the command line: exit codes, messages, JSON and files.
+#include "test_scenes.h"
 
+#include <kdray/kdtree.h>
+#include <kdray/ray_files.h>
+#include <kdray/ray_sets.h>
+#include <kdray/scene_file.h>
+#include <kdray/traverse.h>
+
+#include <nlohmann/json.hpp>
+#include <test_corpus.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sys/wait.h>
+
+namespace kdray {
+namespace {
+
+struct ToolRun {
+  int exit_code;
+  std::string out, err;
+};
+
+class KdCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = test::make_temp_dir("kdtree-cli");
+    scene_ = test::box_room();
+    write_scene(path("room.kdscene"), scene_);
+    scene_ = read_scene(path("room.kdscene"));
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  static std::string slurp(const std::string& file) {
+    std::ifstream in(file);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  ToolRun run(const std::string& tool, const std::string& arguments) const {
+    const std::string command = tool_path_of(tool) + " " + arguments + " >" + path("out.txt") + " 2>" + path("err.txt");
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(path("out.txt")), slurp(path("err.txt"))};
+  }
+  static std::string tool_path_of(const std::string& tool) { return test::tool_path(tool); }
+
+  std::filesystem::path dir_;
+  Scene scene_;
+};
+
+TEST_F(KdCli, KdbuildHelpShowsDefaults) {
+  const ToolRun help = run("kdbuild", "--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("--kt"), std::string::npos);
+  EXPECT_NE(help.out.find("15"), std::string::npos);
+  EXPECT_NE(help.out.find("--empty-bonus"), std::string::npos);
+  EXPECT_EQ(run("kdbuild", "--version").exit_code, 0);
+}
+
+TEST_F(KdCli, KdbuildWritesATreeAndReportsJson) {
+  const ToolRun build = run("kdbuild", path("room.kdscene") + " " + path("room.kdtree") + " --json --threads 2");
+  ASSERT_EQ(build.exit_code, 0) << build.err;
+  const nlohmann::json report = nlohmann::json::parse(build.out);
+  const KdTree tree = read_tree(path("room.kdtree"));
+  EXPECT_DOUBLE_EQ(report.at("sah_cost").get<double>(), tree.stats.sah_cost);
+  EXPECT_EQ(report.at("leaves").get<uint64_t>(), tree.stats.leaves);
+  for (const char* key : {"inner_nodes", "empty_leaves", "max_depth", "mean_leaf_depth", "mean_triangles_per_leaf",
+                          "references_per_triangle", "build_seconds", "peak_memory_mib"})
+    EXPECT_TRUE(report.contains(key)) << key;
+  EXPECT_NO_THROW(check_tree_matches_scene(tree, "room.kdtree", scene_, "room.kdscene"));
+
+  const ToolRun human = run("kdbuild", path("room.kdscene") + " " + path("room2.kdtree") + " --kt 30 --quiet");
+  ASSERT_EQ(human.exit_code, 0) << human.err;
+  EXPECT_NE(human.out.find("SAH cost"), std::string::npos);
+  EXPECT_EQ(read_tree(path("room2.kdtree")).settings.traversal_cost, 30.0f);
+}
+
+TEST_F(KdCli, KdbuildRejectsBadUsageAndBadInput) {
+  EXPECT_EQ(run("kdbuild", "").exit_code, 2);
+  EXPECT_EQ(run("kdbuild", path("room.kdscene") + " " + path("t.kdtree") + " --empty-bonus 1.5").exit_code, 2);
+  EXPECT_EQ(run("kdbuild", path("room.kdscene") + " " + path("t.kdtree") + " --max-depth 65").exit_code, 2);
+  std::ofstream(path("junk.kdscene")) << "not a scene";
+  const ToolRun junk = run("kdbuild", path("junk.kdscene") + " " + path("t.kdtree"));
+  EXPECT_EQ(junk.exit_code, 1);
+  EXPECT_EQ(junk.err.rfind("kdbuild: error: ", 0), 0u) << junk.err;
+  EXPECT_FALSE(std::filesystem::exists(path("t.kdtree"))) << "no output on failure";
+}
+
+TEST_F(KdCli, KdtraceWritesTheClosestHits) {
+  ASSERT_EQ(run("kdbuild", path("room.kdscene") + " " + path("room.kdtree") + " --quiet").exit_code, 0);
+  const KdTree tree = read_tree(path("room.kdtree"));
+  const std::vector<RayRecord> rays = random_rays(tree.bounds, 5000, 3);
+  write_rays(path("rays.bin"), rays);
+  const ToolRun trace = run("kdtrace", path("room.kdscene") + " " + path("room.kdtree") + " --rays " +
+                                           path("rays.bin") + " --hits " + path("hits.bin") + " --json");
+  ASSERT_EQ(trace.exit_code, 0) << trace.err;
+  const nlohmann::json report = nlohmann::json::parse(trace.out);
+  EXPECT_EQ(report.at("rays").get<size_t>(), rays.size());
+  EXPECT_GT(report.at("mrays_per_s").get<double>(), 0.0);
+  std::vector<HitRecord> expected;
+  trace_closest(scene_, tree, rays, expected);
+  const std::vector<HitRecord> hits = read_hits(path("hits.bin"));
+  ASSERT_EQ(hits.size(), rays.size());
+  for (size_t i = 0; i < hits.size(); ++i) ASSERT_EQ(hits[i].triangle, expected[i].triangle) << i;
+
+  const ToolRun generated = run("kdtrace", path("room.kdscene") + " " + path("room.kdtree") +
+                                               " --generate camera --width 16 --height 8 --write-rays " + path("cam.bin"));
+  ASSERT_EQ(generated.exit_code, 0) << generated.err;
+  EXPECT_EQ(read_rays(path("cam.bin")).size(), 128u);
+  EXPECT_NE(generated.out.find("Mrays/s"), std::string::npos);
+}
+
+TEST_F(KdCli, KdtraceRejectsStaleTreesAndBadRayFiles) {
+  write_tree(path("other.kdtree"), build_kdtree(test::icosphere(1, {0, 0, 0}, 1), BuildSettings{}));
+  const ToolRun stale = run("kdtrace", path("room.kdscene") + " " + path("other.kdtree") + " --generate random --count 10");
+  EXPECT_EQ(stale.exit_code, 1);
+  EXPECT_NE(stale.err.find("stale tree"), std::string::npos) << stale.err;
+  EXPECT_NE(stale.err.find("rebuild with kdbuild"), std::string::npos) << stale.err;
+
+  ASSERT_EQ(run("kdbuild", path("room.kdscene") + " " + path("room.kdtree") + " --quiet").exit_code, 0);
+  std::ofstream(path("odd.bin")) << "12345";
+  const ToolRun odd = run("kdtrace", path("room.kdscene") + " " + path("room.kdtree") + " --rays " + path("odd.bin"));
+  EXPECT_EQ(odd.exit_code, 1);
+  EXPECT_NE(odd.err.find("multiple of 32"), std::string::npos) << odd.err;
+  EXPECT_EQ(run("kdtrace", path("room.kdscene") + " " + path("room.kdtree")).exit_code, 2);
+  EXPECT_EQ(run("kdtrace", path("room.kdscene") + " " + path("room.kdtree") + " --generate random --device gpu").exit_code, 2);
+}
+
+}  // namespace
+}  // namespace kdray

@@ -51,15 +51,15 @@ int main(int argc, char** argv) {
   app.add_option("SCENE", scene_path, "Input scene (.kdscene)")->required()->check(CLI::ExistingFile);
   app.add_option("OUTPUT", tree_path, "Output tree (.kdtree), written atomically")->required();
   app.add_option("--kt", settings.traversal_cost, "Cost of traversing an inner node (K_T)")
-      ->capture_default_str()->group("Cost model");
+      ->capture_default_str()->check(CLI::NonNegativeNumber)->group("Cost model");
   app.add_option("--ki", settings.intersection_cost, "Cost of one ray/triangle test (K_I)")
-      ->capture_default_str()->group("Cost model");
+      ->capture_default_str()->check(CLI::PositiveNumber)->group("Cost model");
   app.add_option("--empty-bonus", settings.empty_bonus, "Factor lambda on splits that cut off empty space, in (0, 1]")
-      ->capture_default_str()->group("Cost model");
+      ->capture_default_str()->check(CLI::Range(1e-6, 1.0))->group("Cost model");
   app.add_option("--max-depth", settings.max_depth,
                  "Depth limit; 0: 8 + 1.3 log2 N, at most " + std::to_string(BuildSettings::kAutoMaxDepthCap) +
                      " (limit " + std::to_string(BuildSettings::kMaxDepthLimit) + ")")
-      ->capture_default_str()->group("Tree");
+      ->capture_default_str()->check(CLI::Range(0u, BuildSettings::kMaxDepthLimit))->group("Tree");
   app.add_flag("--no-perfect-splits", no_perfect_splits,
                "Take candidate planes from triangle bounding boxes instead of triangles clipped to the voxel")
       ->group("Tree");

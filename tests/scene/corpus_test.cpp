@@ -9,11 +9,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <iterator>
-#include <regex>
 
 namespace kdray {
 namespace {
@@ -23,18 +23,24 @@ struct CorpusMesh {
   uint64_t triangles;
 };
 
-// Rows "| `file` | 1,234 | ..." of the mesh tables in SOURCES.md and large/README.md.
+// Rows "| `file.obj` | 1,234 | ..." of the mesh tables in SOURCES.md and large/README.md.
 std::vector<CorpusMesh> meshes_listed_in(const std::string& document, const std::string& prefix) {
   std::vector<CorpusMesh> meshes;
   std::ifstream file(std::string(KDRAY_CORPUS_DIR) + "/" + document);
-  const std::regex row(R"(^\| `([^`]+\.(obj|ply))` \| ([0-9,]+) \|)");
   std::string line;
-  std::smatch match;
   while (std::getline(file, line)) {
-    if (!std::regex_search(line, match, row)) continue;
-    std::string digits = match[3];
-    digits.erase(std::remove(digits.begin(), digits.end(), ','), digits.end());
-    meshes.push_back({prefix + match[1].str(), std::stoull(digits)});
+    if (line.rfind("| `", 0) != 0) continue;
+    const size_t name_end = line.find('`', 3);
+    if (name_end == std::string::npos || line.compare(name_end, 4, "` | ") != 0) continue;
+    const std::string name = line.substr(3, name_end - 3);
+    const std::string extension = name.size() > 4 ? name.substr(name.size() - 4) : "";
+    if (extension != ".obj" && extension != ".ply") continue;
+    std::string digits;
+    size_t at = name_end + 4;
+    for (; at < line.size() && (std::isdigit(static_cast<unsigned char>(line[at])) || line[at] == ','); ++at)
+      if (line[at] != ',') digits += line[at];
+    if (digits.empty() || line.compare(at, 2, " |") != 0) continue;  // a size column, not a count
+    meshes.push_back({prefix + name, std::stoull(digits)});
   }
   return meshes;
 }

@@ -166,6 +166,7 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
   const double lo = voxel.min[axis], hi = voxel.max[axis];
   const double half_area = cross + (hi - lo) * girth;
   if (!(half_area > 0.0)) return;  // a voxel without area: no split can pay
+  const double inverse_half_area = 1.0 / half_area;
   uint64_t n_left = 0, n_right = triangles;
   size_t i = 0;
   while (i < count) {
@@ -175,9 +176,9 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
     for (; i < count && events[i].position == position && events[i].type() == kEventPlanar; ++i) ++planar;
     for (; i < count && events[i].position == position && events[i].type() == kEventStart; ++i) ++starting;
     n_right -= ending + planar;
-    // Divided, not multiplied by a reciprocal: a split on the boundary must give exactly 1.
-    const double p_left = (cross + (position - lo) * girth) / half_area;
-    const double p_right = (cross + (hi - position) * girth) / half_area;
+    // A child that is the whole voxel must give exactly 1 (the empty bonus depends on it).
+    const double p_left = position == hi ? 1.0 : (cross + (position - lo) * girth) * inverse_half_area;
+    const double p_right = position == lo ? 1.0 : (cross + (hi - position) * girth) * inverse_half_area;
     const double planar_left_cost = cost.split_cost(p_left, p_right, n_left + planar, n_right);
     const double planar_right_cost = cost.split_cost(p_left, p_right, n_left, n_right + planar);
     const bool planar_left = planar_left_cost <= planar_right_cost;

@@ -14,6 +14,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <mutex>
@@ -61,25 +62,32 @@ class EventBuilder {
       report_leaf(work.depth);
       return;
     }
-    NodeWork left, right;
-    divide(work, split, left, right);
     const size_t inner = out.add_inner(split.axis, split.position);
     if (n >= kParallelTriangles) {
+      NodeWork left, right;
+      divide(work, split, left, right);
+      work = NodeWork{};  // the parent's arrays are not needed while the children build
       Subtree left_tree, right_tree;
       tbb::parallel_invoke([&] { build(left, left_tree); }, [&] { build(right, right_tree); });
       out.append(left_tree);
       out.set_far_child(inner, out.nodes.size());
       out.append(right_tree);
     } else {
-      build(left, out);
+      // Below the parallel threshold a thread builds the whole subtree depth first, so the
+      // children of depth d can live in per-thread storage for that depth and keep their
+      // capacity from node to node: small nodes then allocate nothing.
+      thread_local std::vector<std::array<NodeWork, 2>> children_at_depth(BuildSettings::kMaxDepthLimit + 2);
+      std::array<NodeWork, 2>& children = children_at_depth[work.depth + 1];
+      divide(work, split, children[0], children[1]);
+      build(children[0], out);
       out.set_far_child(inner, out.nodes.size());
-      build(right, out);
+      build(children[1], out);
     }
   }
 
  private:
-  // Splits `work` into the two children and releases its memory.
-  void divide(NodeWork& work, const SplitChoice& split, NodeWork& left, NodeWork& right) const {
+  // Fills the two children of `work` (their arrays are overwritten; their capacity is kept).
+  void divide(const NodeWork& work, const SplitChoice& split, NodeWork& left, NodeWork& right) const {
     const size_t n = work.triangles.size();
     // Scratch arrays reused by each thread's nodes: allocation dominated small nodes.
     thread_local std::vector<uint8_t> sides;
@@ -91,15 +99,26 @@ class EventBuilder {
     left.voxel = below_plane(work.voxel, split.axis, split.position);
     right.voxel = above_plane(work.voxel, split.axis, split.position);
     left.depth = right.depth = work.depth + 1;
+    for (NodeWork* child : {&left, &right}) {
+      child->triangles.clear();
+      child->bounds.clear();
+    }
+    // Bounds are kept per triangle only without perfect splits: with them, a straddler's
+    // child bounds come from clipping the triangle itself.
+    const bool keep_bounds = !settings_.perfect_splits;
 
     // Local index of each parent triangle in each child: monotone, so the order of the kept
     // events survives. Straddlers get fresh bounds and events in each child they really reach.
-    std::vector<Event> fresh_left[3], fresh_right[3];
-    auto place = [](NodeWork& child, std::vector<uint32_t>& index, std::vector<Event>* fresh, size_t i,
-                    uint32_t triangle, const Box3& bounds) {
+    thread_local std::vector<Event> fresh_left[3], fresh_right[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      fresh_left[axis].clear();
+      fresh_right[axis].clear();
+    }
+    auto place = [keep_bounds](NodeWork& child, std::vector<uint32_t>& index, std::vector<Event>* fresh, size_t i,
+                               uint32_t triangle, const Box3& bounds) {
       index[i] = static_cast<uint32_t>(child.triangles.size());
       child.triangles.push_back(triangle);
-      child.bounds.push_back(bounds);
+      if (keep_bounds) child.bounds.push_back(bounds);
       if (fresh)
         for (int axis = 0; axis < 3; ++axis) append_events(fresh[axis], bounds, axis, index[i]);
     };
@@ -111,48 +130,55 @@ class EventBuilder {
     for (NodeWork* child : {&left, &right}) {
       const size_t count = child == &left ? left_count : right_count;
       child->triangles.reserve(count);
-      child->bounds.reserve(count);
+      if (keep_bounds) child->bounds.reserve(count);
     }
     for (size_t i = 0; i < n; ++i) {
       const uint32_t triangle = work.triangles[i];
+      const Box3& parent_bounds = keep_bounds ? work.bounds[i] : work.voxel;
       if (sides[i] == kLeftOnly) {
-        place(left, left_index, nullptr, i, triangle, work.bounds[i]);
+        place(left, left_index, nullptr, i, triangle, parent_bounds);
       } else if (sides[i] == kRightOnly) {
-        place(right, right_index, nullptr, i, triangle, work.bounds[i]);
+        place(right, right_index, nullptr, i, triangle, parent_bounds);
       } else {
         Box3 bounds;
-        if (child_bounds(scene_, triangle, work.bounds[i], left.voxel, settings_.perfect_splits, bounds))
+        if (child_bounds(scene_, triangle, parent_bounds, left.voxel, settings_.perfect_splits, bounds))
           place(left, left_index, fresh_left, i, triangle, bounds);
-        if (child_bounds(scene_, triangle, work.bounds[i], right.voxel, settings_.perfect_splits, bounds))
+        if (child_bounds(scene_, triangle, parent_bounds, right.voxel, settings_.perfect_splits, bounds))
           place(right, right_index, fresh_right, i, triangle, bounds);
       }
     }
-    work.triangles = {};
-    work.bounds = {};
 
+    // One pass per axis sends each kept event to its child without branching on the side
+    // (the sides of neighbouring events are unpredictable): every event is written to both
+    // outputs, and each output advances only over its own.
+    thread_local std::vector<Event> kept_left, kept_right;
     for (int axis = 0; axis < 3; ++axis) {
-      std::vector<Event> kept_left, kept_right;
-      kept_left.reserve(work.events[axis].size() / 2 + 1);
-      kept_right.reserve(work.events[axis].size() / 2 + 1);
-      for (const Event& event : work.events[axis]) {
+      const std::vector<Event>& events = work.events[axis];
+      std::vector<Event>& to_left = fresh_left[axis].empty() ? left.events[axis] : kept_left;
+      std::vector<Event>& to_right = fresh_right[axis].empty() ? right.events[axis] : kept_right;
+      to_left.resize(events.size());
+      to_right.resize(events.size());
+      Event* l = to_left.data();
+      Event* r = to_right.data();
+      for (const Event& event : events) {
         const uint32_t local = event.triangle();
         const uint32_t type = event.packed & 3u;
-        if (sides[local] == kLeftOnly)
-          kept_left.push_back({event.position, left_index[local] << 2 | type});
-        else if (sides[local] == kRightOnly)
-          kept_right.push_back({event.position, right_index[local] << 2 | type});
+        const uint8_t side = sides[local];
+        *l = Event{event.position, left_index[local] << 2 | type};
+        *r = Event{event.position, right_index[local] << 2 | type};
+        l += side == kLeftOnly;
+        r += side == kRightOnly;
       }
-      work.events[axis] = {};
-      merge_into(kept_left, fresh_left[axis], left.events[axis]);
-      merge_into(kept_right, fresh_right[axis], right.events[axis]);
+      to_left.resize(static_cast<size_t>(l - to_left.data()));
+      to_right.resize(static_cast<size_t>(r - to_right.data()));
+      merge_fresh(kept_left, fresh_left[axis], left.events[axis]);
+      merge_fresh(kept_right, fresh_right[axis], right.events[axis]);
     }
   }
 
-  static void merge_into(std::vector<Event>& kept, std::vector<Event>& fresh, std::vector<Event>& out) {
-    if (fresh.empty()) {
-      out = std::move(kept);
-      return;
-    }
+  // Merges sorted re-clipped events into the kept ones (already in `out` when there are none).
+  static void merge_fresh(const std::vector<Event>& kept, std::vector<Event>& fresh, std::vector<Event>& out) {
+    if (fresh.empty()) return;
     std::sort(fresh.begin(), fresh.end());
     out.resize(kept.size() + fresh.size());
     std::merge(kept.begin(), kept.end(), fresh.begin(), fresh.end(), out.begin());

@@ -140,7 +140,7 @@ class ObjConverter {
       corners.clear();
       for (size_t i = 0; i < count; ++i) {
         polygon.push_back(vertex_for(mesh.indices[first_corner + i]));
-        corners.push_back(positions_[polygon.back()]);
+        corners.push_back(builder_.position(polygon.back()));
       }
       first_corner += count;
       if (count == 1) ++scene_.import_stats.ignored_points;
@@ -176,7 +176,6 @@ class ObjConverter {
       uv = Vec2{t[0], t[1]};
     }
     const uint32_t vertex = builder_.add_vertex({v[0], v[1], v[2]}, normal, uv);
-    positions_.push_back({v[0], v[1], v[2]});
     vertex_of_.emplace(key, vertex);
     return vertex;
   }
@@ -197,7 +196,6 @@ class ObjConverter {
   const tinyobj::attrib_t& attrib_;
   Scene& scene_;
   MeshBuilder builder_;
-  std::vector<Vec3> positions_;  // of builder vertices, for triangulation
   std::unordered_map<CornerKey, uint32_t, CornerKeyHash> vertex_of_;
   int64_t default_material_ = -1;
 };

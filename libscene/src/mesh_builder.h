@@ -17,6 +17,7 @@ class MeshBuilder {
 
   uint32_t add_vertex(const Vec3& position, const std::optional<Vec3>& normal, const std::optional<Vec2>& uv);
   size_t vertex_count() const { return positions_.size(); }
+  const Vec3& position(uint32_t vertex) const { return positions_[vertex]; }
 
   // Counts the triangle as a source triangle and keeps it unless it must be dropped.
   void add_triangle(uint32_t a, uint32_t b, uint32_t c, uint32_t material);

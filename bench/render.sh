@@ -70,7 +70,7 @@ echo "== traversal kernel Mrays/s (1M camera rays, 1M random rays; median of 3):
 for mesh in bunny/stanford-bunny.obj dragon/dragon_vcg_100k.ply large/bunny_sub2.ply large/dragons_4x4.ply; do
   name=$(basename "${mesh%.*}")
   "$KDCONVERT" "$CORPUS/$mesh" "$WORK/$name.kdscene" > /dev/null
-  "$KDBUILD" "$WORK/$name.kdscene" "$WORK/$name.kdtree" > /dev/null
+  "$KDBUILD" "$WORK/$name.kdscene" "$WORK/$name.kdtree" > /dev/null 2>&1
   "$TRACE_BENCH" "$WORK/$name.kdscene" "$WORK/$name.kdtree" 1000000 |
     /usr/bin/python3 -c "import json,sys; r=json.load(sys.stdin); print(f\"$name ({r['triangles']} tris): camera {r['camera_mrays_per_s']:.2f}, random {r['random_mrays_per_s']:.2f}\")"
   rm -f "$WORK/$name.kdscene" "$WORK/$name.kdtree"

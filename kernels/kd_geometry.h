@@ -40,8 +40,10 @@ KD_INLINE float kd_copysignf(float magnitude, float sign) { return copysign(magn
 KD_INLINE int kd_isfinitef(float x) { return isfinite(x); }
 #else
 KD_INLINE float kd_absf(float x) { return std::fabs(x); }
-KD_INLINE float kd_minf(float a, float b) { return std::fmin(a, b); }
-KD_INLINE float kd_maxf(float a, float b) { return std::fmax(a, b); }
+/* Plain comparisons, not std::fmin/fmax: those are library calls without -ffast-math, and
+ * traversal never passes NaN here (kd_ray_setup rejects non-finite rays). */
+KD_INLINE float kd_minf(float a, float b) { return b < a ? b : a; }
+KD_INLINE float kd_maxf(float a, float b) { return a < b ? b : a; }
 KD_INLINE float kd_copysignf(float magnitude, float sign) { return std::copysign(magnitude, sign); }
 KD_INLINE int kd_isfinitef(float x) { return std::isfinite(x) ? 1 : 0; }
 #endif

@@ -125,5 +125,13 @@ TEST_F(KdrenderCli, ListsDevices) {
   EXPECT_EQ(kdrender(cornell(path("nodevice.png"), "--device 99")).exit_code, 1);
 }
 
+TEST_F(KdrenderCli, WithoutAnOpenClPlatformSaysHowToInstallPocl) {
+  // An empty vendor directory hides every ICD from the loader.
+  test::CommandResult run = test::run_command("OCL_ICD_VENDORS=" + test::quoted((*dir_ / "no-vendors").string()) +
+                                              " " + test::quoted(test::tool_path("kdrender")) + " --device list");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.output.find("pocl-opencl-icd"), std::string::npos) << run.output;
+}
+
 }  // namespace
 }  // namespace kdray

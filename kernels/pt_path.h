@@ -35,8 +35,7 @@ typedef struct PtPath {
   kd_u32 pixel, sample, bounce;
   kd_i32 alive, shadow_pending, pad;
 } PtPath;
-typedef char pt_path_size_check[sizeof(PtPath) == 176 ? 1 : -1];
-#define PT_PATH_BYTES 176
+typedef char pt_path_size_check[sizeof(PtPath) == PT_PATH_BYTES ? 1 : -1];
 
 inline RayRecord pt_ray(float3 origin, float3 direction, float tmax) {
   RayRecord ray;

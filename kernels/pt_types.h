@@ -68,4 +68,7 @@ typedef struct PtRenderParams {
 } PtRenderParams;
 KD_STATIC_ASSERT(sizeof(PtRenderParams) == 144, "PtRenderParams is 144 bytes");
 
+/* Bytes of one PtPath (kernels/pt_path.h, checked there): the host sizes wavefront buffers by it. */
+#define PT_PATH_BYTES 176
+
 #endif /* PT_TYPES_H */

@@ -5,8 +5,6 @@
 namespace kdray {
 namespace {
 
-constexpr size_t kPathBytes = 176;  // PT_PATH_BYTES in kernels/pt_path.h
-
 struct WavefrontKernels {
   cl::Kernel begin, extend, shade, shadow, accumulate;
   cl::Buffer paths, hits;
@@ -18,7 +16,7 @@ void run_wavefront_pass(RenderJob& job, uint32_t first, uint32_t count) {
   cl::Runtime& runtime = job.runtime;
   const size_t pixels = size_t(job.params.width) * job.params.height;
   WavefrontKernels k;
-  k.paths = runtime.buffer(pixels * kPathBytes, nullptr, CL_MEM_READ_WRITE);
+  k.paths = runtime.buffer(pixels * PT_PATH_BYTES, nullptr, CL_MEM_READ_WRITE);
   k.hits = runtime.buffer(pixels * sizeof(HitRecord), nullptr, CL_MEM_READ_WRITE);
   k.begin = cl::create_kernel(job.program, "pt_wave_begin");
   k.extend = cl::create_kernel(job.program, "pt_wave_extend");

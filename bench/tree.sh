@@ -32,8 +32,10 @@ run_json() {
 }
 
 echo "# kdray k-d tree benchmark: $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
-echo "# medians of $runs runs; random and camera rays: $rays rays / 1024x768"
-printf "%-12s %10s %12s %10s %10s %12s %12s\n" mesh triangles build_s peak_MiB sah_cost camera_Mrays random_Mrays
+echo "# medians of $runs runs; random rays: $rays, camera rays: 1024x768; load average: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "# build_cpu and random_cpu_s are process CPU seconds (all threads): on a shared machine they"
+echo "# show the work when the wall times show the load"
+printf "%-12s %10s %9s %9s %9s %10s %12s %12s %14s\n" mesh triangles build_s build_cpu peak_MiB sah_cost camera_Mrays random_Mrays random_cpu_s
 for entry in "${meshes[@]}"; do
   name="${entry%%=*}"
   source="$corpus/${entry#*=}"
@@ -51,10 +53,11 @@ for entry in "${meshes[@]}"; do
       --count "$rays" --seed 1 --json
   done
   triangles="$(median triangles "$work/$name.build.json")"
-  printf "%-12s %10s %12s %10s %10s %12s %12s\n" "$name" "$triangles" \
-    "$(median build_seconds "$work/$name.build.json")" "$(median peak_memory_mib "$work/$name.build.json")" \
-    "$(median sah_cost "$work/$name.build.json")" "$(median mrays_per_s "$work/$name.camera.json")" \
-    "$(median mrays_per_s "$work/$name.random.json")"
+  printf "%-12s %10s %9s %9s %9s %10s %12s %12s %14s\n" "$name" "$triangles" \
+    "$(median build_seconds "$work/$name.build.json")" "$(median build_cpu_seconds "$work/$name.build.json")" \
+    "$(median peak_memory_mib "$work/$name.build.json")" "$(median sah_cost "$work/$name.build.json")" \
+    "$(median mrays_per_s "$work/$name.camera.json")" "$(median mrays_per_s "$work/$name.random.json")" \
+    "$(median cpu_seconds "$work/$name.random.json")"
 done
 
 : > "$work/bunny_sub2.bbox.json"

@@ -51,38 +51,59 @@ class EventBuilder {
         max_depth_(settings.resolved_max_depth(triangle_count)),
         control_(control) {}
 
+  // Builds the subtree of `work` into `out`. Nodes with many triangles build their children
+  // in parallel; below that size a thread builds the whole subtree itself (build_serial).
   void build(NodeWork& work, Subtree& out) {
+    const size_t n = work.triangles.size();
+    if (n < kParallelTriangles) {
+      build_serial(work, out);
+      report_finished(work.depth);
+      return;
+    }
+    const SplitChoice split = choose_split(work);
+    if (split.axis < 0) {
+      out.add_leaf(work.triangles.data(), n);
+      report_finished(work.depth);
+      return;
+    }
+    const size_t inner = out.add_inner(split.axis, split.position);
+    NodeWork left, right;
+    divide(work, split, left, right);
+    work = NodeWork{};  // the parent's arrays are not needed while the children build
+    Subtree left_tree, right_tree;
+    tbb::parallel_invoke([&] { build(left, left_tree); }, [&] { build(right, right_tree); });
+    out.append(left_tree);
+    out.set_far_child(inner, out.nodes.size());
+    out.append(right_tree);
+  }
+
+ private:
+  // The cheapest split, or axis -1 when a leaf is cheaper or the depth limit is reached.
+  SplitChoice choose_split(const NodeWork& work) const {
     const size_t n = work.triangles.size();
     SplitChoice split;
     if (n > 0 && work.depth < max_depth_)
       for (int axis = 0; axis < 3; ++axis)
         sweep_axis(work.events[axis].data(), work.events[axis].size(), axis, work.voxel, n, cost_, split);
-    if (split.axis < 0 || !(split.cost < cost_.leaf_cost(n))) {
-      out.add_leaf(work.triangles.data(), n);
-      report_leaf(work.depth);
+    if (split.axis >= 0 && !(split.cost < cost_.leaf_cost(n))) split.axis = -1;
+    return split;
+  }
+
+  // Depth first on one thread: the children of depth d live in per-thread storage for that
+  // depth and keep their capacity from node to node, so small nodes allocate nothing.
+  void build_serial(const NodeWork& work, Subtree& out) const {
+    const SplitChoice split = choose_split(work);
+    if (split.axis < 0) {
+      out.add_leaf(work.triangles.data(), work.triangles.size());
       return;
     }
     const size_t inner = out.add_inner(split.axis, split.position);
-    if (n >= kParallelTriangles) {
-      NodeWork left, right;
-      divide(work, split, left, right);
-      work = NodeWork{};  // the parent's arrays are not needed while the children build
-      Subtree left_tree, right_tree;
-      tbb::parallel_invoke([&] { build(left, left_tree); }, [&] { build(right, right_tree); });
-      out.append(left_tree);
-      out.set_far_child(inner, out.nodes.size());
-      out.append(right_tree);
-    } else {
-      // Below the parallel threshold a thread builds the whole subtree depth first, so the
-      // children of depth d can live in per-thread storage for that depth and keep their
-      // capacity from node to node: small nodes then allocate nothing.
-      thread_local std::vector<std::array<NodeWork, 2>> children_at_depth(BuildSettings::kMaxDepthLimit + 2);
-      std::array<NodeWork, 2>& children = children_at_depth[work.depth + 1];
-      divide(work, split, children[0], children[1]);
-      build(children[0], out);
-      out.set_far_child(inner, out.nodes.size());
-      build(children[1], out);
-    }
+    thread_local std::vector<std::array<NodeWork, 2>> children_at_depth(BuildSettings::kMaxDepthLimit + 2);
+    std::array<NodeWork, 2>& children = children_at_depth[work.depth + 1];
+    divide(work, split, children[0], children[1]);
+    build_serial(children[0], out);
+    out.set_far_child(inner, out.nodes.size());
+    build_serial(children[1], out);
   }
 
  private:
@@ -184,9 +205,10 @@ class EventBuilder {
     std::merge(kept.begin(), kept.end(), fresh.begin(), fresh.end(), out.begin());
   }
 
-  // Progress is the share of the tree's "mass" in finished leaves, each leaf weighing
-  // 2^-depth: for a binary tree these weights sum to exactly 1 (Kraft), so it ends at 100%.
-  void report_leaf(uint32_t depth) {
+  // Progress is the share of the tree's "mass" in finished subtrees, a subtree at depth d
+  // weighing 2^-d: for a binary tree these weights sum to exactly 1 (Kraft), so it ends at
+  // 100%. Only subtrees of the parallel levels report, which keeps the shared counter cold.
+  void report_finished(uint32_t depth) {
     if (!control_.progress) return;
     const uint64_t weight = uint64_t{1} << (63 - std::min<uint32_t>(depth, 63));
     const uint64_t before = finished_mass_.fetch_add(weight);

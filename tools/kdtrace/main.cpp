@@ -9,6 +9,7 @@
 #include "tool_main.h"
 
 #include <chrono>
+#include <sys/resource.h>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -21,16 +22,26 @@ enum class Device { Cpu };
 struct TraceRun {
   std::vector<HitRecord> hits;
   double seconds = 0;
+  double cpu_seconds = 0;  // user + system: with the wall time, tells a busy machine
 };
+
+double cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
 
 TraceRun trace_on(Device device, const kdray::Scene& scene, const kdray::KdTree& tree,
                   const std::vector<RayRecord>& rays, const kdray::TraceOptions& options) {
   TraceRun run;
+  const double cpu_start = cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
   switch (device) {
     case Device::Cpu: kdray::trace_closest(scene, tree, rays, run.hits, options); break;
   }
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.cpu_seconds = cpu_seconds() - cpu_start;
   return run;
 }
 
@@ -98,7 +109,7 @@ int main(int argc, char** argv) {
     const double mrays_per_s = run.seconds > 0 ? static_cast<double>(rays.size()) / run.seconds / 1e6 : 0.0;
     if (json) {
       kdray::tool::print_json({{"scene", scene_path}, {"tree", tree_path}, {"rays", rays.size()}, {"hits", hit_count},
-                               {"seconds", run.seconds}, {"mrays_per_s", mrays_per_s}, {"device", "cpu"},
+                               {"seconds", run.seconds}, {"cpu_seconds", run.cpu_seconds}, {"mrays_per_s", mrays_per_s}, {"device", "cpu"},
                                {"threads", options.threads}, {"stack", stack_name}});
       return kdray::tool::kExitOk;
     }

@@ -3,6 +3,7 @@
 #include "file_report.h"
 
 #include <kdray/container_file.h>
+#include <kdray/error.h>
 #include <kdray/format.h>
 
 #include <tool_main.h>
@@ -21,6 +22,7 @@ struct FileKind {
 // One entry per file kind kdinfo understands.
 const FileKind kKinds[] = {
     {kdray::format::kSceneMagic, kdinfo::describe_scene_file},
+    {kdray::format::kTreeMagic, kdinfo::describe_tree_file},
 };
 
 const FileKind* kind_of(const std::string& path) {
@@ -32,27 +34,52 @@ const FileKind* kind_of(const std::string& path) {
 
 }  // namespace
 
+kdinfo::FileReport describe(const std::string& path) {
+  const FileKind* kind = kind_of(path);
+  if (kind == nullptr) {
+    if (!std::filesystem::exists(path)) throw kdray::Error(path, "no such file");
+    throw kdray::Error(path, "not a kdray file (unknown magic number)");
+  }
+  return kind->describe(path);
+}
+
+bool is_kind(const kdinfo::FileReport& report, const char* kind) { return report.json.at("kind") == kind; }
+
 int main(int argc, char** argv) {
-  CLI::App app{"Describes a kdray file (.kdscene) and checks that it is intact.\n"
-               "Exit status: 0 intact, 1 damaged or unreadable, 2 bad arguments."};
+  CLI::App app{"Describes kdray files (.kdscene, .kdtree) and checks that they are intact.\n"
+               "Given a scene and a tree, also says whether the tree was built for that scene.\n"
+               "Exit status: 0 intact (and matching), 1 damaged, unreadable or stale, 2 bad arguments."};
   app.name("kdinfo");
   app.set_version_flag("--version", std::string("kdinfo ") + KDRAY_VERSION);
-  std::string path;
+  std::vector<std::string> paths;
   bool json = false;
-  app.add_option("FILE", path, "The file to describe")->required();
+  app.add_option("FILE", paths, "The file to describe, or a .kdscene and a .kdtree to check together")
+      ->required()
+      ->expected(1, 2);
   app.add_flag("--json", json, "Print the description as JSON on stdout")->group("Output");
 
   return kdray::tool::run(app, argc, argv, [&] {
-    const FileKind* kind = kind_of(path);
-    if (kind == nullptr) {
-      if (!std::filesystem::exists(path)) throw kdray::Error(path, "no such file");
-      throw kdray::Error(path, "not a kdray file (unknown magic number)");
+    std::vector<kdinfo::FileReport> reports;
+    for (const std::string& path : paths) reports.push_back(describe(path));
+    if (reports.size() == 2) {
+      if (is_kind(reports[0], "kdtree")) std::swap(reports[0], reports[1]);
+      if (!is_kind(reports[0], "kdscene") || !is_kind(reports[1], "kdtree"))
+        throw kdray::Error(paths[1], "two files must be one .kdscene and one .kdtree");
+      reports.push_back(kdinfo::describe_match(reports[0], reports[1]));
     }
-    const kdinfo::FileReport report = kind->describe(path);
-    if (json)
-      kdray::tool::print_json(report.json);
-    else
-      std::cout << report.text;
-    return report.intact ? kdray::tool::kExitOk : kdray::tool::kExitFailure;
+    bool all_good = true;
+    nlohmann::json documents = nlohmann::json::array();
+    for (const kdinfo::FileReport& report : reports) {
+      all_good = all_good && report.intact;
+      documents.push_back(report.json);
+      if (!json) std::cout << report.text << (&report != &reports.back() ? "\n" : "");
+    }
+    if (json) {
+      if (reports.size() == 1)
+        kdray::tool::print_json(documents[0]);
+      else
+        kdray::tool::print_json({{"scene", documents[0]}, {"tree", documents[1]}, {"match", documents[2]["match"]}});
+    }
+    return all_good ? kdray::tool::kExitOk : kdray::tool::kExitFailure;
   });
 }

@@ -7,7 +7,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -17,16 +16,6 @@ namespace {
 
 using kdray::Scene;
 using nlohmann::json;
-
-std::string format(const char* pattern, ...) __attribute__((format(printf, 1, 2)));
-std::string format(const char* pattern, ...) {
-  char buffer[1024];
-  va_list arguments;
-  va_start(arguments, pattern);
-  std::vsnprintf(buffer, sizeof buffer, pattern, arguments);
-  va_end(arguments);
-  return buffer;
-}
 
 json vec3_json(const kdray::Vec3& v) { return {v.x, v.y, v.z}; }
 

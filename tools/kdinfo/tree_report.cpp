@@ -1,0 +1,114 @@
+// kdinfo's description of a .kdtree file, and of whether a tree matches a scene.
+#include "file_report.h"
+
+#include <kdray/container_file.h>
+#include <kdray/error.h>
+#include <kdray/kdtree.h>
+
+#include <chrono>
+
+namespace kdinfo {
+namespace {
+
+using nlohmann::json;
+
+json tree_json(const kdray::KdTree& tree) {
+  const kdray::BuildSettings& settings = tree.settings;
+  const kdray::TreeStats& stats = tree.stats;
+  const kdray::Bounds& bounds = tree.bounds;
+  return {
+      {"bounds", {{"min", {bounds.min.x, bounds.min.y, bounds.min.z}}, {"max", {bounds.max.x, bounds.max.y, bounds.max.z}}}},
+      {"build_settings",
+       {{"kt", settings.traversal_cost},
+        {"ki", settings.intersection_cost},
+        {"empty_bonus", settings.empty_bonus},
+        {"max_depth", settings.max_depth},
+        {"perfect_splits", settings.perfect_splits}}},
+      {"triangles", stats.triangles},
+      {"sah_cost", stats.sah_cost},
+      {"nodes", tree.nodes.size()},
+      {"inner_nodes", stats.inner_nodes},
+      {"leaves", stats.leaves},
+      {"empty_leaves", stats.empty_leaves},
+      {"max_leaf_depth", stats.max_depth},
+      {"mean_leaf_depth", stats.mean_leaf_depth},
+      {"mean_triangles_per_leaf", stats.mean_triangles_per_leaf},
+      {"references_per_triangle", stats.references_per_triangle},
+  };
+}
+
+std::string tree_text(const json& j) {
+  const json& s = j["build_settings"];
+  const json& b = j["bounds"];
+  std::string text;
+  text += format("triangles  %llu\n", j["triangles"].get<unsigned long long>());
+  text += format("bounds     (%g, %g, %g) .. (%g, %g, %g)\n", b["min"][0].get<double>(), b["min"][1].get<double>(),
+                 b["min"][2].get<double>(), b["max"][0].get<double>(), b["max"][1].get<double>(),
+                 b["max"][2].get<double>());
+  text += format("settings   K_T %g, K_I %g, empty bonus %g, max depth %u%s, perfect splits %s\n",
+                 s["kt"].get<double>(), s["ki"].get<double>(), s["empty_bonus"].get<double>(),
+                 s["max_depth"].get<unsigned>(), s["max_depth"].get<unsigned>() == 0 ? " (automatic)" : "",
+                 s["perfect_splits"].get<bool>() ? "on" : "off");
+  text += format("SAH cost   %.4g\n", j["sah_cost"].get<double>());
+  text += format("nodes      %llu inner, %llu leaves (%llu empty)\n", j["inner_nodes"].get<unsigned long long>(),
+                 j["leaves"].get<unsigned long long>(), j["empty_leaves"].get<unsigned long long>());
+  text += format("depth      max %u, mean leaf %.2f\n", j["max_leaf_depth"].get<unsigned>(),
+                 j["mean_leaf_depth"].get<double>());
+  text += format("leaves     %.2f triangles per non-empty leaf, %.2f references per triangle\n",
+                 j["mean_triangles_per_leaf"].get<double>(), j["references_per_triangle"].get<double>());
+  return text;
+}
+
+}  // namespace
+
+FileReport describe_tree_file(const std::string& path) {
+  const kdray::ContainerContents header =
+      kdray::peek_container(path, kdray::format::kTreeMagic, kdray::format::kTreeVersion, "kdtree");
+  FileReport report;
+  const std::string scene_hash = kdray::hash_hex(header.header.content_hash);
+  report.json = {{"file", path},
+                 {"kind", "kdtree"},
+                 {"format_version", header.header.version},
+                 {"file_size", header.header.payload_size + sizeof(kdray::format::FileHeader)},
+                 {"scene_hash", scene_hash}};
+  report.text = format("%s: kdtree version %u\nscene hash %s (the scene it was built from)\n", path.c_str(),
+                       header.header.version, scene_hash.c_str());
+  try {
+    const auto start = std::chrono::steady_clock::now();
+    const kdray::KdTree tree = kdray::read_tree(path);
+    const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const json details = tree_json(tree);
+    report.json.update(details);
+    report.json["load_seconds"] = load_seconds;
+    report.json["intact"] = true;
+    report.text += tree_text(details) + format("intact     yes (checksum and structure verified, loaded in %.3f s)\n",
+                                               load_seconds);
+    report.intact = true;
+  } catch (const kdray::Error& error) {
+    report.json["intact"] = false;
+    report.json["problem"] = error.what();
+    report.text += std::string("intact     NO: ") + error.what() + "\n";
+  }
+  return report;
+}
+
+FileReport describe_match(const FileReport& scene, const FileReport& tree) {
+  FileReport report;
+  const std::string scene_hash = scene.json.at("content_hash");
+  const std::string tree_scene_hash = tree.json.at("scene_hash");
+  const bool same_hash = scene_hash == tree_scene_hash;
+  // The recorded hash covers the triangles, so a matching hash with intact files means the
+  // tree's triangle references fit the scene; a damaged file cannot be vouched for.
+  report.intact = same_hash && scene.intact && tree.intact;
+  report.json = {{"scene", scene.json.at("file")}, {"tree", tree.json.at("file")}, {"match", report.intact}};
+  if (!same_hash)
+    report.text = format("match      NO: stale tree: built for scene %s, but %s has %s: rebuild with kdbuild\n",
+                         tree_scene_hash.c_str(), scene.json.at("file").get<std::string>().c_str(), scene_hash.c_str());
+  else if (!report.intact)
+    report.text = "match      unknown: a file is damaged\n";
+  else
+    report.text = "match      yes: the tree was built for this scene\n";
+  return report;
+}
+
+}  // namespace kdinfo

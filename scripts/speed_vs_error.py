@@ -20,6 +20,7 @@ Debian's matplotlib belongs to /usr/bin/python3 (GUIDE section 9), hence the int
 
 import argparse
 import csv
+import hashlib
 import json
 import os
 import subprocess
@@ -82,9 +83,11 @@ def compare(kdcompare, test, reference):
 
 
 def own_reference(args, renderer, directory):
-    """Renders (or reuses, when newer than the scene and tree) the script's own reference."""
-    name = (f"reference-{args.reference_spp}spp-seed{args.reference_seed}-{args.width}x{args.height}"
-            f"-b{args.max_bounces}.exr")
+    """Renders (or reuses, when newer than the scene and tree) the script's own reference. Its
+    name carries every setting, the extra kdrender options as a hash, so a stale one is not reused."""
+    options = hashlib.sha1(" ".join([args.device or ""] + args.kdrender_args).encode()).hexdigest()[:8]
+    name = (f"{os.path.splitext(os.path.basename(args.scene))[0]}-reference-{args.reference_spp}spp"
+            f"-seed{args.reference_seed}-{args.width}x{args.height}-b{args.max_bounces}-{options}.exr")
     path = os.path.join(directory, name)
     inputs_mtime = max(os.path.getmtime(args.scene), os.path.getmtime(args.tree))
     if os.path.exists(path) and os.path.getmtime(path) > inputs_mtime:
@@ -125,7 +128,7 @@ def command_run(args):
         spp = 1
         while True:
             metrics = compare(args.kdcompare, accumulated, reference)
-            rows.append({"spp": spp, "seconds": seconds, "wall_seconds": wall,
+            rows.append({"spp": spp, "seconds": round(seconds, 6), "wall_seconds": round(wall, 3),
                          **{name: metrics[name] for name in METRICS}, "nonfinite": metrics["nonfinite_test"]})
             print(f"speed_vs_error: {spp:6d} spp  {seconds:9.3f} s  relmse {metrics['relmse']:.4g}", file=sys.stderr)
             if spp * 2 > args.max_spp:

@@ -1,0 +1,171 @@
+#include "generated_scenes.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+
+namespace kdray::test {
+
+Scene make_scene(std::vector<Vec3> positions, std::vector<uint32_t> indices) {
+  Scene scene;
+  scene.positions = std::move(positions);
+  scene.indices = std::move(indices);
+  scene.material_ids.assign(scene.triangle_count(), 0);
+  scene.materials.push_back(Material{});
+  scene.cameras.push_back(Camera{});
+  scene.content_hash = compute_content_hash(scene);
+  return scene;
+}
+
+void append_mesh(Scene& scene, const Scene& extra) {
+  const uint32_t base = uint32_t(scene.positions.size());
+  scene.positions.insert(scene.positions.end(), extra.positions.begin(), extra.positions.end());
+  for (uint32_t index : extra.indices) scene.indices.push_back(base + index);
+  scene.material_ids.resize(scene.triangle_count(), 0);
+  scene.content_hash = compute_content_hash(scene);
+}
+
+Scene make_icosphere(int subdivisions, float radius) {
+  const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<std::array<double, 3>> points = {
+      {-1, phi, 0}, {1, phi, 0}, {-1, -phi, 0}, {1, -phi, 0}, {0, -1, phi}, {0, 1, phi},
+      {0, -1, -phi}, {0, 1, -phi}, {phi, 0, -1}, {phi, 0, 1}, {-phi, 0, -1}, {-phi, 0, 1}};
+  std::vector<std::array<uint32_t, 3>> faces = {
+      {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+      {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  auto normalise = [](std::array<double, 3> p) {
+    const double length = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    return std::array<double, 3>{p[0] / length, p[1] / length, p[2] / length};
+  };
+  for (auto& p : points) p = normalise(p);
+  for (int level = 0; level < subdivisions; ++level) {
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;  // shared, so the mesh stays closed
+    auto midpoint = [&](uint32_t a, uint32_t b) {
+      const auto key = std::minmax(a, b);
+      auto found = midpoints.find(key);
+      if (found != midpoints.end()) return found->second;
+      points.push_back(normalise({(points[a][0] + points[b][0]) / 2, (points[a][1] + points[b][1]) / 2,
+                                  (points[a][2] + points[b][2]) / 2}));
+      return midpoints[key] = uint32_t(points.size() - 1);
+    };
+    std::vector<std::array<uint32_t, 3>> finer;
+    for (const auto& f : faces) {
+      const uint32_t ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+      finer.push_back({f[0], ab, ca});
+      finer.push_back({f[1], bc, ab});
+      finer.push_back({f[2], ca, bc});
+      finer.push_back({ab, bc, ca});
+    }
+    faces = std::move(finer);
+  }
+  std::vector<Vec3> positions;
+  for (const auto& p : points) positions.push_back({float(p[0] * radius), float(p[1] * radius), float(p[2] * radius)});
+  std::vector<uint32_t> indices;
+  for (const auto& f : faces) indices.insert(indices.end(), f.begin(), f.end());
+  return make_scene(std::move(positions), std::move(indices));
+}
+
+Scene make_grid_box(float lo, float hi, int cells) {
+  // Grid coordinates are exact: lo + (hi - lo) * i / cells in double, rounded once, and every
+  // vertex is shared by the faces that meet there.
+  std::map<std::array<int, 3>, uint32_t> vertex_of;
+  std::vector<Vec3> positions;
+  auto coordinate = [&](int i) { return float(double(lo) + (double(hi) - double(lo)) * i / cells); };
+  auto vertex = [&](std::array<int, 3> grid) {
+    auto found = vertex_of.find(grid);
+    if (found != vertex_of.end()) return found->second;
+    positions.push_back({coordinate(grid[0]), coordinate(grid[1]), coordinate(grid[2])});
+    return vertex_of[grid] = uint32_t(positions.size() - 1);
+  };
+  std::vector<uint32_t> indices;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u_axis = (axis + 1) % 3, v_axis = (axis + 2) % 3;
+    for (int side = 0; side <= cells; side += cells) {
+      for (int i = 0; i < cells; ++i) {
+        for (int j = 0; j < cells; ++j) {
+          std::array<uint32_t, 4> corner;
+          for (int k = 0; k < 4; ++k) {
+            std::array<int, 3> grid;
+            grid[axis] = side;
+            grid[u_axis] = i + (k == 1 || k == 2);
+            grid[v_axis] = j + (k >= 2);
+            corner[k] = vertex(grid);
+          }
+          indices.insert(indices.end(), {corner[0], corner[1], corner[2], corner[0], corner[2], corner[3]});
+        }
+      }
+    }
+  }
+  return make_scene(std::move(positions), std::move(indices));
+}
+
+Scene transformed(const Scene& scene, double scale, const Vec3& offset) {
+  Scene result = scene;
+  for (Vec3& p : result.positions) {
+    p = {float(double(p.x) * scale + offset.x), float(double(p.y) * scale + offset.y),
+         float(double(p.z) * scale + offset.z)};
+  }
+  result.content_hash = compute_content_hash(result);
+  return result;
+}
+
+std::vector<std::pair<uint32_t, uint32_t>> mesh_edges(const Scene& scene) {
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  for (size_t t = 0; t < scene.triangle_count(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      edges.push_back(std::minmax(scene.indices[3 * t + k], scene.indices[3 * t + (k + 1) % 3]));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+std::vector<float> split_positions(const KdTree& tree, int axis) {
+  std::vector<float> splits;
+  for (const KdNode& node : tree.nodes) {
+    if (!kd_node_is_leaf(node) && int(kd_node_axis(node)) == axis) splits.push_back(kd_node_split(node));
+  }
+  std::sort(splits.begin(), splits.end());
+  splits.erase(std::unique(splits.begin(), splits.end()), splits.end());
+  return splits;
+}
+
+std::string obj_mesh(const Scene& mesh, const std::string& material, size_t vertices_before) {
+  std::string text = "usemtl " + material + "\n";
+  char line[128];
+  for (const Vec3& p : mesh.positions) {
+    std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
+    text += line;
+  }
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    std::snprintf(line, sizeof line, "f %zu %zu %zu\n", vertices_before + mesh.indices[3 * t] + 1,
+                  vertices_before + mesh.indices[3 * t + 1] + 1, vertices_before + mesh.indices[3 * t + 2] + 1);
+    text += line;
+  }
+  return text;
+}
+
+std::string white_and_light_mtl(float radiance) {
+  char text[256];
+  std::snprintf(text, sizeof text, "newmtl white\nKd 0.8 0.8 0.8\n\nnewmtl light\nKd 0 0 0\nKe %g %g %g\n", radiance,
+                radiance, radiance);
+  return text;
+}
+
+void write_obj(const std::string& path, const std::string& obj, const std::string& mtl) {
+  const std::filesystem::path mtl_path = std::filesystem::path(path).replace_extension(".mtl");
+  if (!mtl.empty()) std::ofstream(mtl_path) << mtl;
+  std::ofstream out(path);
+  if (!mtl.empty()) out << "mtllib " << mtl_path.filename().string() << "\n";
+  out << obj;
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace kdray::test

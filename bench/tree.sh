@@ -20,7 +20,8 @@ median() {
   /usr/bin/python3 - "$1" "$2" <<'PY'
 import json, statistics, sys
 values = [json.loads(line)[sys.argv[1]] for line in open(sys.argv[2]) if line.strip()]
-print(f"{statistics.median(values):.4g}")
+median = statistics.median(values)
+print(int(median) if float(median).is_integer() else f"{median:.4g}")
 PY
 }
 

@@ -82,9 +82,19 @@ class EventBuilder {
   SplitChoice choose_split(const NodeWork& work) const {
     const size_t n = work.triangles.size();
     SplitChoice split;
-    if (n > 0 && work.depth < max_depth_)
-      for (int axis = 0; axis < 3; ++axis)
-        sweep_axis(work.events[axis].data(), work.events[axis].size(), axis, work.voxel, n, cost_, split);
+    if (n == 0 || work.depth >= max_depth_) return split;
+    // Each axis keeps its own best; combining them in axis order with "strictly lower wins"
+    // gives what one sweep over x, y, z in turn gives.
+    SplitChoice per_axis[3];
+    auto sweep = [&](int axis) {
+      sweep_axis(work.events[axis].data(), work.events[axis].size(), axis, work.voxel, n, cost_, per_axis[axis]);
+    };
+    if (n >= kParallelTriangles)
+      tbb::parallel_for(0, 3, sweep);
+    else
+      for (int axis = 0; axis < 3; ++axis) sweep(axis);
+    for (const SplitChoice& candidate : per_axis)
+      if (candidate.axis >= 0 && (split.axis < 0 || candidate.cost < split.cost)) split = candidate;
     if (split.axis >= 0 && !(split.cost < cost_.leaf_cost(n))) split.axis = -1;
     return split;
   }
@@ -169,32 +179,58 @@ class EventBuilder {
       }
     }
 
-    // One pass per axis sends each kept event to its child without branching on the side
-    // (the sides of neighbouring events are unpredictable): every event is written to both
-    // outputs, and each output advances only over its own.
-    thread_local std::vector<Event> kept_left, kept_right;
-    for (int axis = 0; axis < 3; ++axis) {
-      const std::vector<Event>& events = work.events[axis];
-      std::vector<Event>& to_left = fresh_left[axis].empty() ? left.events[axis] : kept_left;
-      std::vector<Event>& to_right = fresh_right[axis].empty() ? right.events[axis] : kept_right;
-      to_left.resize(events.size());
-      to_right.resize(events.size());
-      Event* l = to_left.data();
-      Event* r = to_right.data();
-      for (const Event& event : events) {
-        const uint32_t local = event.triangle();
-        const uint32_t type = event.packed & 3u;
-        const uint8_t side = sides[local];
-        *l = Event{event.position, left_index[local] << 2 | type};
-        *r = Event{event.position, right_index[local] << 2 | type};
-        l += side == kLeftOnly;
-        r += side == kRightOnly;
-      }
-      to_left.resize(static_cast<size_t>(l - to_left.data()));
-      to_right.resize(static_cast<size_t>(r - to_right.data()));
-      merge_fresh(kept_left, fresh_left[axis], left.events[axis]);
-      merge_fresh(kept_right, fresh_right[axis], right.events[axis]);
+    // The three axes are independent; nodes large enough to be worth it split them in
+    // parallel (the top of a tree is often a chain of empty-space cuts with no other
+    // parallelism). The scratch arrays are this thread's, so they are passed on explicitly.
+    const std::vector<uint8_t>& node_sides = sides;
+    const std::vector<uint32_t>& to_left_index = left_index;
+    const std::vector<uint32_t>& to_right_index = right_index;
+    std::vector<Event>* const fresh_to_left = fresh_left;
+    std::vector<Event>* const fresh_to_right = fresh_right;
+    auto split_axis = [&](int axis, std::vector<Event>& kept_left, std::vector<Event>& kept_right) {
+      split_events(work.events[axis], node_sides, to_left_index, to_right_index, fresh_to_left[axis],
+                   fresh_to_right[axis], kept_left, kept_right, left.events[axis], right.events[axis]);
+    };
+    if (n >= kParallelTriangles) {
+      tbb::parallel_for(0, 3, [&](int axis) {
+        std::vector<Event> kept_left, kept_right;
+        split_axis(axis, kept_left, kept_right);
+      });
+    } else {
+      thread_local std::vector<Event> kept_left, kept_right;
+      for (int axis = 0; axis < 3; ++axis) split_axis(axis, kept_left, kept_right);
     }
+  }
+
+  // Sends each event of one axis whose triangle goes to only one side to that child, then
+  // merges in the child's re-clipped (fresh) events. It does not branch on the side (the
+  // sides of neighbouring events are unpredictable): every event is written to both outputs,
+  // and each output advances only over its own. Kept events go straight to the child when
+  // there is nothing to merge in.
+  static void split_events(const std::vector<Event>& events, const std::vector<uint8_t>& sides,
+                           const std::vector<uint32_t>& left_index, const std::vector<uint32_t>& right_index,
+                           std::vector<Event>& fresh_left, std::vector<Event>& fresh_right,
+                           std::vector<Event>& kept_left, std::vector<Event>& kept_right,
+                           std::vector<Event>& left_events, std::vector<Event>& right_events) {
+    std::vector<Event>& to_left = fresh_left.empty() ? left_events : kept_left;
+    std::vector<Event>& to_right = fresh_right.empty() ? right_events : kept_right;
+    to_left.resize(events.size());
+    to_right.resize(events.size());
+    Event* l = to_left.data();
+    Event* r = to_right.data();
+    for (const Event& event : events) {
+      const uint32_t local = event.triangle();
+      const uint32_t type = event.packed & 3u;
+      const uint8_t side = sides[local];
+      *l = Event{event.position, left_index[local] << 2 | type};
+      *r = Event{event.position, right_index[local] << 2 | type};
+      l += side == kLeftOnly;
+      r += side == kRightOnly;
+    }
+    to_left.resize(static_cast<size_t>(l - to_left.data()));
+    to_right.resize(static_cast<size_t>(r - to_right.data()));
+    merge_fresh(kept_left, fresh_left, left_events);
+    merge_fresh(kept_right, fresh_right, right_events);
   }
 
   // Merges sorted re-clipped events into the kept ones (already in `out` when there are none).

@@ -1,5 +1,5 @@
 // kdcompare as a user runs it: exit codes, thresholds, JSON, heat map, and the failures.
-#include "run_tool.h"
+#include <run_command.h>
 #include "synthetic_images.h"
 #include "test_corpus.h"
 

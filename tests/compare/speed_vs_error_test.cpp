@@ -1,6 +1,6 @@
 // scripts/speed_vs_error.py end to end on a tiny Cornell box: the CSV's rows and header, the
 // exactness of reusing samples, and the plot.
-#include "run_tool.h"
+#include <run_command.h>
 #include "test_corpus.h"
 
 #include <gtest/gtest.h>

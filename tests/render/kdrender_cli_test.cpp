@@ -28,12 +28,13 @@ class KdrenderCli : public ::testing::Test {
     delete dir_;
   }
   // kdrender with its own program cache directory, so the cold and warm builds are this test's.
-  static test::CommandResult kdrender(const std::string& arguments) {
-    std::string cache = "KDRAY_CACHE_DIR=" + test::quoted((*dir_ / "cache").string()) + " ";
-    return test::run_command(cache + test::quoted(test::tool_path("kdrender")) + " " + arguments);
+  static test::ToolRun kdrender(const std::string& arguments) {
+    std::string cache = "KDRAY_CACHE_DIR=" + test::shell_quoted((*dir_ / "cache").string()) + " ";
+    return test::run_command(cache + test::shell_quoted(test::tool_path("kdrender")) + " " + arguments +
+                             " 2>&1");
   }
   static std::string cornell(const std::string& output, const std::string& extra) {
-    return test::quoted(scene_) + " " + test::quoted(tree_) + " -o " + test::quoted(output) +
+    return test::shell_quoted(scene_) + " " + test::shell_quoted(tree_) + " -o " + test::shell_quoted(output) +
            " --width 16 --height 16 --cam-pos 278,273,-800 --cam-target 278,273,0 --fov 39.3077 " + extra;
   }
   static std::string path(const std::string& name) { return (*dir_ / name).string(); }
@@ -45,9 +46,9 @@ fs::path* KdrenderCli::dir_ = nullptr;
 std::string KdrenderCli::scene_, KdrenderCli::tree_;
 
 TEST_F(KdrenderCli, RendersPngAndReportsJsonWithAWarmSecondBuild) {
-  test::CommandResult first = kdrender(cornell(path("a.png"), "--spp 2 --json"));
+  test::ToolRun first = kdrender(cornell(path("a.png"), "--spp 2 --json"));
   ASSERT_EQ(first.exit_code, 0) << first.output;
-  test::CommandResult second = kdrender(cornell(path("b.png"), "--spp 2 --json"));
+  test::ToolRun second = kdrender(cornell(path("b.png"), "--spp 2 --json"));
   ASSERT_EQ(second.exit_code, 0) << second.output;
   nlohmann::json report = nlohmann::json::parse(second.output);
   EXPECT_EQ(report["build_source"], "disk cache");
@@ -63,15 +64,15 @@ TEST_F(KdrenderCli, MergedRangesEqualOneRender) {
   ASSERT_EQ(kdrender(cornell(path("whole.exr"), "--spp 4 --quiet")).exit_code, 0);
   ASSERT_EQ(kdrender(cornell(path("low.exr"), "--spp 2 --quiet")).exit_code, 0);
   ASSERT_EQ(kdrender(cornell(path("high.exr"), "--spp 2 --sample-offset 2 --quiet")).exit_code, 0);
-  test::CommandResult merge =
-      kdrender("--merge " + test::quoted(path("high.exr")) + " " + test::quoted(path("low.exr")) + " -o " +
-               test::quoted(path("merged.exr")) + " --quiet");
+  test::ToolRun merge =
+      kdrender("--merge " + test::shell_quoted(path("high.exr")) + " " + test::shell_quoted(path("low.exr")) + " -o " +
+               test::shell_quoted(path("merged.exr")) + " --quiet");
   ASSERT_EQ(merge.exit_code, 0) << merge.output;
   Film whole = read_film_exr(path("whole.exr")), merged = read_film_exr(path("merged.exr"));
   EXPECT_EQ(merged.sums, whole.sums);
   EXPECT_EQ(merged.sample_count, 4u);
-  test::CommandResult gap = kdrender("--merge " + test::quoted(path("high.exr")) + " " +
-                                     test::quoted(path("high.exr")) + " -o " + test::quoted(path("gap.exr")));
+  test::ToolRun gap = kdrender("--merge " + test::shell_quoted(path("high.exr")) + " " +
+                                     test::shell_quoted(path("high.exr")) + " -o " + test::shell_quoted(path("gap.exr")));
   EXPECT_EQ(gap.exit_code, 1);
   EXPECT_NE(gap.output.find("not adjacent"), std::string::npos) << gap.output;
   EXPECT_FALSE(fs::exists(path("gap.exr")));
@@ -82,8 +83,8 @@ TEST_F(KdrenderCli, RefusesAStaleTree) {
   Scene other = test::make_inward_cube(grey);
   KdTree other_tree = test::tree_for(other);
   write_tree(path("other.kdtree"), other_tree);
-  test::CommandResult run = kdrender(test::quoted(scene_) + " " + test::quoted(path("other.kdtree")) + " -o " +
-                                     test::quoted(path("stale.png")));
+  test::ToolRun run = kdrender(test::shell_quoted(scene_) + " " + test::shell_quoted(path("other.kdtree")) + " -o " +
+                                     test::shell_quoted(path("stale.png")));
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.output.find("kdrender: error:"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("stale"), std::string::npos) << run.output;
@@ -98,8 +99,8 @@ TEST_F(KdrenderCli, RefusesADamagedScene) {
     file.seekp(static_cast<std::streamoff>(fs::file_size(damaged) / 2));
     file.put('\x5a');
   }
-  test::CommandResult run = kdrender(test::quoted(damaged) + " " + test::quoted(tree_) + " -o " +
-                                     test::quoted(path("damaged.png")));
+  test::ToolRun run = kdrender(test::shell_quoted(damaged) + " " + test::shell_quoted(tree_) + " -o " +
+                                     test::shell_quoted(path("damaged.png")));
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.output.find(damaged), std::string::npos) << run.output;
   EXPECT_FALSE(fs::exists(path("damaged.png")));
@@ -109,17 +110,17 @@ TEST_F(KdrenderCli, BadArgumentsExitWithUsageStatus) {
   const char* bad[] = {"--spp 0", "--width 0", "--aov shadows", "--cam-pos 1,2", "--max-bounces 5000",
                        "--frobnicate", "--cam-pos 0,0,0"};
   for (const char* arguments : bad) {
-    test::CommandResult run = kdrender(cornell(path("bad.exr"), arguments));
+    test::ToolRun run = kdrender(cornell(path("bad.exr"), arguments));
     EXPECT_EQ(run.exit_code, 2) << arguments << ": " << run.output;
     EXPECT_NE(run.output.find("kdrender: error:"), std::string::npos) << run.output;
   }
-  EXPECT_EQ(kdrender(test::quoted(scene_) + " " + test::quoted(tree_)).exit_code, 2);  // no -o
+  EXPECT_EQ(kdrender(test::shell_quoted(scene_) + " " + test::shell_quoted(tree_)).exit_code, 2);  // no -o
   EXPECT_EQ(kdrender(cornell(path("bad.tiff"), "")).exit_code, 2);
   EXPECT_FALSE(fs::exists(path("bad.exr")));
 }
 
 TEST_F(KdrenderCli, ListsDevices) {
-  test::CommandResult run = kdrender("--device list");
+  test::ToolRun run = kdrender("--device list");
   EXPECT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("[default]"), std::string::npos) << run.output;
   EXPECT_EQ(kdrender(cornell(path("nodevice.png"), "--device 99")).exit_code, 1);
@@ -127,8 +128,8 @@ TEST_F(KdrenderCli, ListsDevices) {
 
 TEST_F(KdrenderCli, WithoutAnOpenClPlatformSaysHowToInstallPocl) {
   // An empty vendor directory hides every ICD from the loader.
-  test::CommandResult run = test::run_command("OCL_ICD_VENDORS=" + test::quoted((*dir_ / "no-vendors").string()) +
-                                              " " + test::quoted(test::tool_path("kdrender")) + " --device list");
+  test::ToolRun run = test::run_command("OCL_ICD_VENDORS=" + test::shell_quoted((*dir_ / "no-vendors").string()) +
+                                              " " + test::shell_quoted(test::tool_path("kdrender")) + " --device list 2>&1");
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.output.find("pocl-opencl-icd"), std::string::npos) << run.output;
 }

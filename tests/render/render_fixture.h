@@ -7,12 +7,9 @@
 #include <kdray/scene.h>
 #include <kdray/scene_file.h>
 
+#include <run_command.h>
 #include <test_corpus.h>
 
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -42,35 +39,13 @@ inline Camera cornell_camera() {
 }
 inline std::string cornell_obj() { return std::string(KDRAY_SOURCE_DIR) + "/samples/cornell-box.obj"; }
 
-struct CommandResult {
-  int exit_code = -1;  // -1: no normal exit (signal, sanitizer abort)
-  std::string output;  // stdout and stderr together
-};
-
-inline std::string quoted(const std::string& text) {
-  std::string result = "'";
-  for (char c : text) result += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return result + "'";
-}
-
-inline CommandResult run_command(const std::string& command) {
-  CommandResult result;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  size_t got;
-  while ((got = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), got);
-  int status = pclose(pipe);
-  if (status != -1 && WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
-  return result;
-}
-
 // Converts the sample Cornell box and builds its tree with the tools into dir; returns the
 // scene and tree paths.
 inline std::pair<std::string, std::string> prepare_cornell_files(const std::filesystem::path& dir) {
   std::string scene = (dir / "cornell.kdscene").string(), tree = (dir / "cornell.kdtree").string();
   if (!std::filesystem::exists(scene)) {
-    CommandResult convert = run_command(test::quoted(tool_path("kdconvert")) + " " + test::quoted(cornell_obj()) + " " + test::quoted(scene));
+    ToolRun convert = run_command(shell_quoted(tool_path("kdconvert")) + " " + shell_quoted(cornell_obj()) + " " +
+                                  shell_quoted(scene) + " 2>&1");
     if (convert.exit_code != 0) throw std::runtime_error("kdconvert failed: " + convert.output);
   }
   if (!std::filesystem::exists(tree)) {

@@ -2,7 +2,7 @@
 // subprocesses in a temporary directory, with their --json reports parsed.
 #pragma once
 
-#include "run_tool.h"
+#include <run_command.h>
 #include "test_corpus.h"
 
 #include <nlohmann/json.hpp>

@@ -1,4 +1,5 @@
-// Running a built tool as a subprocess from tests: exit code and captured stdout.
+// Running a built tool through the shell from tests: exit code and captured stdout (append
+// " 2>&1" to the command to capture stderr too).
 #pragma once
 
 #include <sys/wait.h>

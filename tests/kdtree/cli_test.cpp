@@ -1,6 +1,7 @@
 // kdbuild and kdtrace from the command line: exit codes, messages, JSON and files.
 #include "test_scenes.h"
 
+#include <kdray/container_file.h>
 #include <kdray/kdtree.h>
 #include <kdray/ray_files.h>
 #include <kdray/ray_sets.h>
@@ -112,6 +113,42 @@ TEST_F(KdCli, KdtraceWritesTheClosestHits) {
   ASSERT_EQ(generated.exit_code, 0) << generated.err;
   EXPECT_EQ(read_rays(path("cam.bin")).size(), 128u);
   EXPECT_NE(generated.out.find("Mrays/s"), std::string::npos);
+}
+
+TEST_F(KdCli, KdtraceOnOpenClWritesTheCpuHits) {
+  ASSERT_EQ(run("kdbuild", path("room.kdscene") + " " + path("room.kdtree") + " --quiet").exit_code, 0);
+  const std::string trace = path("room.kdscene") + " " + path("room.kdtree") + " --generate hard --count 4000 ";
+  for (const std::string stack : {"short", "depth1"}) {
+    const ToolRun cpu = run("kdtrace", trace + "--stack " + stack + " --hits " + path("cpu.bin"));
+    ASSERT_EQ(cpu.exit_code, 0) << cpu.err;
+    const ToolRun opencl =
+        run("kdtrace", trace + "--stack " + stack + " --device opencl --json --hits " + path("opencl.bin"));
+    ASSERT_EQ(opencl.exit_code, 0) << opencl.err;
+    const nlohmann::json report = nlohmann::json::parse(opencl.out);
+    EXPECT_EQ(report.at("device"), "opencl");
+    EXPECT_GT(report.at("mrays_per_s").get<double>(), 0.0);
+    EXPECT_EQ(slurp(path("cpu.bin")), slurp(path("opencl.bin"))) << "stack " << stack;
+  }
+}
+
+TEST_F(KdCli, KdinfoDescribesTreesAndSaysWhetherTheyMatchAScene) {
+  ASSERT_EQ(run("kdbuild", path("room.kdscene") + " " + path("room.kdtree") + " --quiet").exit_code, 0);
+  const ToolRun info = run("kdinfo", path("room.kdtree") + " --json");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const nlohmann::json tree = nlohmann::json::parse(info.out);
+  EXPECT_EQ(tree.at("kind"), "kdtree");
+  EXPECT_EQ(tree.at("intact"), true);
+  EXPECT_EQ(tree.at("scene_hash"), hash_hex(scene_.content_hash));
+  EXPECT_EQ(tree.at("triangles").get<size_t>(), scene_.triangle_count());
+
+  const ToolRun match = run("kdinfo", path("room.kdscene") + " " + path("room.kdtree"));
+  EXPECT_EQ(match.exit_code, 0) << match.err;
+  EXPECT_NE(match.out.find("match      yes"), std::string::npos) << match.out;
+
+  write_scene(path("other.kdscene"), test::icosphere(1, {0, 0, 0}, 1));
+  const ToolRun stale = run("kdinfo", path("room.kdtree") + " " + path("other.kdscene") + " --json");
+  EXPECT_EQ(stale.exit_code, 1);
+  EXPECT_EQ(nlohmann::json::parse(stale.out).at("match"), false);
 }
 
 TEST_F(KdCli, KdtraceRejectsStaleTreesAndBadRayFiles) {

@@ -4,6 +4,7 @@
 #include <kdray/ray_files.h>
 #include <kdray/ray_sets.h>
 #include <kdray/scene_file.h>
+#include <kdray/trace_opencl.h>
 #include <kdray/traverse.h>
 
 #include "tool_main.h"
@@ -16,14 +17,25 @@
 
 namespace {
 
-// Where the rays are traced. The OpenCL device joins here (librender's kd_trace kernel).
-enum class Device { Cpu };
+// Where the rays are traced: the CPU reference traversal (libkdtree) or librender's kd_trace
+// kernel on an OpenCL device; both run the same kernels/kd_traverse.h.
+enum class Device { Cpu, OpenCl };
 
 struct TraceRun {
   std::vector<HitRecord> hits;
-  double seconds = 0;
+  double seconds = 0;      // tracing only: for OpenCL the kernel time, rays already on the device
   double cpu_seconds = 0;  // user + system: with the wall time, tells a busy machine
+  kdray::TraceOpenClStats opencl;
 };
+
+unsigned kernel_stack_size(kdray::TraversalStack stack) {
+  switch (stack) {
+    case kdray::TraversalStack::Depth1: return 1;
+    case kdray::TraversalStack::Full: return kdray::BuildSettings::kMaxDepthLimit;
+    case kdray::TraversalStack::Short: break;
+  }
+  return 0;  // the kernel's default KD_SHORT_STACK_SIZE, as on the CPU
+}
 
 double cpu_seconds() {
   rusage usage{};
@@ -33,14 +45,20 @@ double cpu_seconds() {
 }
 
 TraceRun trace_on(Device device, const kdray::Scene& scene, const kdray::KdTree& tree,
-                  const std::vector<RayRecord>& rays, const kdray::TraceOptions& options) {
+                  const std::vector<RayRecord>& rays, const kdray::TraceOptions& options,
+                  kdray::DeviceSelection opencl_device) {
   TraceRun run;
   const double cpu_start = cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
   switch (device) {
     case Device::Cpu: kdray::trace_closest(scene, tree, rays, run.hits, options); break;
+    case Device::OpenCl:
+      opencl_device.short_stack_size = kernel_stack_size(options.stack);
+      run.hits = kdray::trace_rays_opencl(scene, tree, rays, opencl_device, &run.opencl);
+      break;
   }
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (device == Device::OpenCl) run.seconds = run.opencl.trace_seconds;
   run.cpu_seconds = cpu_seconds() - cpu_start;
   return run;
 }
@@ -56,6 +74,7 @@ int main(int argc, char** argv) {
   uint32_t width = 1024, height = 768;
   uint64_t seed = 1;
   kdray::TraceOptions options;
+  kdray::DeviceSelection opencl_device;
   bool json = false;
   app.add_option("SCENE", scene_path, "Scene (.kdscene)")->required()->check(CLI::ExistingFile);
   app.add_option("TREE", tree_path, "Its k-d tree (.kdtree, from kdbuild)")->required()->check(CLI::ExistingFile);
@@ -76,10 +95,16 @@ int main(int argc, char** argv) {
   app.add_option("--hits", hits_path, "Hit file to write (formats/rays.md)")->group("Output");
   app.add_flag("--json", json, "Print the summary as JSON on stdout")->group("Output");
   app.add_option("--device", device, "Where to trace")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, Device>{{"cpu", Device::Cpu}}))
+      ->transform(CLI::CheckedTransformer(std::map<std::string, Device>{{"cpu", Device::Cpu}, {"opencl", Device::OpenCl}}))
       ->default_str("cpu")->group("Run");
-  app.add_option("--threads", options.threads, "CPU threads; 0: all cores")->capture_default_str()->group("Run");
-  app.add_option("--stack", stack_name, "CPU traversal stack: short (8 entries, restart), depth1, full")
+  app.add_option("--opencl-device", opencl_device.device,
+                 "With --device opencl: auto (a GPU if present, else the CPU), cpu, gpu or an index of "
+                 "`kdrender --device list`")
+      ->capture_default_str()->group("Run");
+  app.add_option("--local-size", opencl_device.local_size, "With --device opencl: work-group size; 0: the device's default")
+      ->capture_default_str()->group("Run");
+  app.add_option("--threads", options.threads, "CPU threads of --device cpu; 0: all cores")->capture_default_str()->group("Run");
+  app.add_option("--stack", stack_name, "Traversal stack: short (8 entries, restart), depth1, full")
       ->check(CLI::IsMember({"short", "depth1", "full"}))->capture_default_str()->group("Run");
 
   return kdray::tool::run(app, argc, argv, [&] {
@@ -101,18 +126,32 @@ int main(int argc, char** argv) {
     options.stack = stack_name == "depth1" ? kdray::TraversalStack::Depth1
                     : stack_name == "full" ? kdray::TraversalStack::Full
                                            : kdray::TraversalStack::Short;
-    const TraceRun run = trace_on(device, scene, tree, rays, options);
+    const TraceRun run = trace_on(device, scene, tree, rays, options, opencl_device);
     if (!hits_path.empty()) kdray::write_hits(hits_path, run.hits);
 
     size_t hit_count = 0;
     for (const HitRecord& hit : run.hits) hit_count += hit.triangle != KD_NO_HIT ? 1 : 0;
     const double mrays_per_s = run.seconds > 0 ? static_cast<double>(rays.size()) / run.seconds / 1e6 : 0.0;
     if (json) {
-      kdray::tool::print_json({{"scene", scene_path}, {"tree", tree_path}, {"rays", rays.size()}, {"hits", hit_count},
-                               {"seconds", run.seconds}, {"cpu_seconds", run.cpu_seconds}, {"mrays_per_s", mrays_per_s}, {"device", "cpu"},
-                               {"threads", options.threads}, {"stack", stack_name}});
+      nlohmann::json summary = {{"scene", scene_path}, {"tree", tree_path}, {"rays", rays.size()}, {"hits", hit_count},
+                                {"seconds", run.seconds}, {"cpu_seconds", run.cpu_seconds}, {"mrays_per_s", mrays_per_s},
+                                {"stack", stack_name}};
+      if (device == Device::Cpu) {
+        summary["device"] = "cpu";
+        summary["threads"] = options.threads;
+      } else {
+        summary["device"] = "opencl";
+        summary["opencl_device"] = run.opencl.device;
+        summary["build_seconds"] = run.opencl.build_seconds;
+        summary["build_source"] = run.opencl.build_source;
+        summary["upload_seconds"] = run.opencl.upload_seconds;
+      }
+      kdray::tool::print_json(summary);
       return kdray::tool::kExitOk;
     }
+    if (device == Device::OpenCl)
+      std::printf("OpenCL device %s: program %s in %.3f s, upload %.3f s\n", run.opencl.device.c_str(),
+                  run.opencl.build_source.c_str(), run.opencl.build_seconds, run.opencl.upload_seconds);
     std::printf("%zu rays, %zu hits (%.1f%%) in %.3f s: %.2f Mrays/s\n", rays.size(), hit_count,
                 rays.empty() ? 0.0 : 100.0 * static_cast<double>(hit_count) / static_cast<double>(rays.size()),
                 run.seconds, mrays_per_s);

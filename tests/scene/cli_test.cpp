@@ -93,7 +93,7 @@ TEST_F(Cli, BadArgumentsExitTwo) {
     EXPECT_EQ(result.err.rfind("kdconvert: error: ", 0), 0u) << result.err;
   }
   EXPECT_EQ(info({}).exit_code, 2);
-  EXPECT_EQ(info({"a", "b"}).exit_code, 2);
+  EXPECT_EQ(info({"a", "b", "c"}).exit_code, 2);  // one file, or a scene and a tree
 }
 
 TEST_F(Cli, HelpShowsGroupsAndDefaults) {

@@ -3,6 +3,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <kdray/error.h>
+
+#include <chrono>
 #include <cstdarg>
 #include <cstdio>
 #include <string>
@@ -24,6 +27,30 @@ inline std::string format(const char* pattern, ...) {
   std::vsnprintf(buffer, sizeof buffer, pattern, arguments);
   va_end(arguments);
   return buffer;
+}
+
+// Loads the whole file with `load` (which reads and verifies it), times that, and adds the
+// facts `describe` draws from the loaded object, the load time and the verdict to `report`;
+// `details_text` turns the facts into human-readable lines. A kdray::Error from the load marks
+// the file damaged.
+template <typename Load, typename Describe, typename DetailsText>
+void add_verified_details(FileReport& report, const char* checks, Load&& load, Describe&& describe,
+                          DetailsText&& details_text) {
+  try {
+    const auto start = std::chrono::steady_clock::now();
+    const auto loaded = load();
+    const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const nlohmann::json details = describe(loaded);
+    report.json.update(details);
+    report.json["load_seconds"] = load_seconds;
+    report.json["intact"] = true;
+    report.text += details_text(details) + format("intact     yes (%s verified, loaded in %.3f s)\n", checks, load_seconds);
+    report.intact = true;
+  } catch (const kdray::Error& error) {
+    report.json["intact"] = false;
+    report.json["problem"] = error.what();
+    report.text += std::string("intact     NO: ") + error.what() + "\n";
+  }
 }
 
 // .kdscene files (scene_report.cpp). Throws kdray::Error when not even the header is usable.

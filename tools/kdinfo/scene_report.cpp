@@ -5,7 +5,6 @@
 #include <kdray/error.h>
 #include <kdray/scene_file.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -161,21 +160,8 @@ FileReport describe_scene_file(const std::string& path) {
   report.text = format("%s: kdscene version %u, %llu bytes\nhash       %s\noptional   %s\n", path.c_str(),
                        summary.version, (unsigned long long)summary.file_size,
                        kdray::hash_hex(summary.content_hash).c_str(), optional.empty() ? "none" : optional.c_str());
-  try {
-    const auto start = std::chrono::steady_clock::now();
-    const Scene scene = kdray::read_scene(path);
-    const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const json details = scene_json(scene);
-    report.json.update(details);
-    report.json["load_seconds"] = load_seconds;
-    report.json["intact"] = true;
-    report.text += scene_text(details) + format("intact     yes (checksum verified, loaded in %.3f s)\n", load_seconds);
-    report.intact = true;
-  } catch (const kdray::Error& error) {
-    report.json["intact"] = false;
-    report.json["problem"] = error.what();
-    report.text += std::string("intact     NO: ") + error.what() + "\n";
-  }
+  add_verified_details(
+      report, "checksum", [&] { return kdray::read_scene(path); }, scene_json, scene_text);
   return report;
 }
 

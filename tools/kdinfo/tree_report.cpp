@@ -5,7 +5,6 @@
 #include <kdray/error.h>
 #include <kdray/kdtree.h>
 
-#include <chrono>
 
 namespace kdinfo {
 namespace {
@@ -73,22 +72,8 @@ FileReport describe_tree_file(const std::string& path) {
                  {"scene_hash", scene_hash}};
   report.text = format("%s: kdtree version %u\nscene hash %s (the scene it was built from)\n", path.c_str(),
                        header.header.version, scene_hash.c_str());
-  try {
-    const auto start = std::chrono::steady_clock::now();
-    const kdray::KdTree tree = kdray::read_tree(path);
-    const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const json details = tree_json(tree);
-    report.json.update(details);
-    report.json["load_seconds"] = load_seconds;
-    report.json["intact"] = true;
-    report.text += tree_text(details) + format("intact     yes (checksum and structure verified, loaded in %.3f s)\n",
-                                               load_seconds);
-    report.intact = true;
-  } catch (const kdray::Error& error) {
-    report.json["intact"] = false;
-    report.json["problem"] = error.what();
-    report.text += std::string("intact     NO: ") + error.what() + "\n";
-  }
+  add_verified_details(
+      report, "checksum and structure", [&] { return kdray::read_tree(path); }, tree_json, tree_text);
   return report;
 }
 

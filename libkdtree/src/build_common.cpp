@@ -20,7 +20,13 @@ struct Polygon {
 };
 
 // Keeps the part of `in` with coordinate `axis` >= bound (keep_above) or <= bound.
-void clip_polygon(const Polygon& in, int axis, double bound, bool keep_above, Polygon& out) {
+// Returns false (and leaves `out` alone) when all of `in` is kept: clipping would copy it
+// unchanged, point for point.
+bool clip_polygon(const Polygon& in, int axis, double bound, bool keep_above, Polygon& out) {
+  bool all_inside = true;
+  for (int i = 0; i < in.size; ++i)
+    all_inside = all_inside && (keep_above ? in.points[i][axis] >= bound : in.points[i][axis] <= bound);
+  if (all_inside) return false;
   out.size = 0;
   for (int i = 0; i < in.size; ++i) {
     const double* p = in.points[i];
@@ -39,6 +45,7 @@ void clip_polygon(const Polygon& in, int axis, double bound, bool keep_above, Po
       ++out.size;
     }
   }
+  return true;
 }
 
 float round_down(double value) {
@@ -114,17 +121,21 @@ bool triangle_bounds_in_voxel(const Scene& scene, uint32_t triangle, const Box3&
   for (int k = 0; k < 3; ++k) inside = inside && box.min[k] >= voxel.min[k] && box.max[k] <= voxel.max[k];
   if (!perfect_splits || inside) return intersect_boxes(box, voxel, out);
 
-  Polygon polygon, clipped;
-  polygon.size = 3;
+  // Planes that keep the whole polygon are skipped; the current polygon alternates between
+  // the two buffers.
+  Polygon buffers[2];
+  int current = 0;
+  buffers[0].size = 3;
   for (int corner = 0; corner < 3; ++corner) {
     const float* p = &vertex(scene, triangle, corner).x;
-    for (int k = 0; k < 3; ++k) polygon.points[corner][k] = p[k];
+    for (int k = 0; k < 3; ++k) buffers[0].points[corner][k] = p[k];
   }
   for (int k = 0; k < 3; ++k) {
-    clip_polygon(polygon, k, voxel.min[k], true, clipped);
-    clip_polygon(clipped, k, voxel.max[k], false, polygon);
-    if (polygon.size == 0) return false;
+    if (clip_polygon(buffers[current], k, voxel.min[k], true, buffers[1 - current])) current = 1 - current;
+    if (clip_polygon(buffers[current], k, voxel.max[k], false, buffers[1 - current])) current = 1 - current;
+    if (buffers[current].size == 0) return false;
   }
+  const Polygon& polygon = buffers[current];
   Box3 clipped_box;
   for (int k = 0; k < 3; ++k) {
     double lo = polygon.points[0][k], hi = lo;
@@ -147,8 +158,9 @@ bool child_bounds(const Scene& scene, uint32_t triangle, const Box3& parent_boun
 double CostModel::split_cost(double p_left, double p_right, uint64_t n_left, uint64_t n_right) const {
   const bool one_side_empty = n_left == 0 || n_right == 0;
   const double lambda = one_side_empty && p_left != 1.0 && p_right != 1.0 ? empty_bonus : 1.0;
-  return lambda * (traversal + intersection * (p_left * static_cast<double>(n_left) +
-                                               p_right * static_cast<double>(n_right)));
+  // Counts are below 2^62: the signed conversion is exact and cheaper than the unsigned one.
+  return lambda * (traversal + intersection * (p_left * static_cast<double>(static_cast<int64_t>(n_left)) +
+                                               p_right * static_cast<double>(static_cast<int64_t>(n_right))));
 }
 
 CostModel cost_model_of(const BuildSettings& settings) {
@@ -170,19 +182,35 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
   uint64_t n_left = 0, n_right = triangles;
   size_t i = 0;
   while (i < count) {
+    // Events of one position come ends first, then planar, then starts (the event order), so
+    // counting by type over the run of equal positions gives the three counts without a branch
+    // on the type.
     const float position = events[i].position;
     uint64_t ending = 0, planar = 0, starting = 0;
-    for (; i < count && events[i].position == position && events[i].type() == kEventEnd; ++i) ++ending;
-    for (; i < count && events[i].position == position && events[i].type() == kEventPlanar; ++i) ++planar;
-    for (; i < count && events[i].position == position && events[i].type() == kEventStart; ++i) ++starting;
+    do {
+      const uint32_t type = events[i].packed & 3u;
+      ending += type == kEventEnd;
+      planar += type == kEventPlanar;
+      starting += type == kEventStart;
+      ++i;
+    } while (i < count && events[i].position == position);
     n_right -= ending + planar;
     // A child that is the whole voxel must give exactly 1 (the empty bonus depends on it).
     const double p_left = position == hi ? 1.0 : (cross + (position - lo) * girth) * inverse_half_area;
     const double p_right = position == lo ? 1.0 : (cross + (hi - position) * girth) * inverse_half_area;
-    const double planar_left_cost = cost.split_cost(p_left, p_right, n_left + planar, n_right);
-    const double planar_right_cost = cost.split_cost(p_left, p_right, n_left, n_right + planar);
-    const bool planar_left = planar_left_cost <= planar_right_cost;
-    const double split_cost = planar_left ? planar_left_cost : planar_right_cost;
+    double split_cost;
+    bool planar_left;
+    if (planar == 0) {
+      // Both sides give the same number; comparing it with itself keeps what two calls give
+      // (true unless it is NaN).
+      split_cost = cost.split_cost(p_left, p_right, n_left, n_right);
+      planar_left = split_cost <= split_cost;
+    } else {
+      const double planar_left_cost = cost.split_cost(p_left, p_right, n_left + planar, n_right);
+      const double planar_right_cost = cost.split_cost(p_left, p_right, n_left, n_right + planar);
+      planar_left = planar_left_cost <= planar_right_cost;
+      split_cost = planar_left ? planar_left_cost : planar_right_cost;
+    }
     if (best.axis < 0 || split_cost < best.cost) best = SplitChoice{split_cost, axis, position, planar_left};
     n_left += starting + planar;
   }

@@ -12,6 +12,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <utility>
 #include <vector>
 
 namespace kdray::detail {
@@ -69,8 +72,31 @@ inline bool operator<(const Event& a, const Event& b) {
 }
 constexpr uint32_t kMaxLocalTriangles = (1u << 30) - 1u;
 
+// Allocator whose value-less construction leaves the value uninitialised, so resize() of a
+// scratch array that is overwritten anyway costs no zero fill.
+template <typename T>
+struct UninitialisedAllocator : std::allocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = UninitialisedAllocator<U>;
+  };
+  UninitialisedAllocator() = default;
+  template <typename U>
+  UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
+  template <typename U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+using EventArray = std::vector<Event, UninitialisedAllocator<Event>>;
+
 // Appends the events of a triangle with `bounds` (local index `local`) on `axis`.
-inline void append_events(std::vector<Event>& events, const Box3& bounds, int axis, uint32_t local) {
+template <typename EventVector>
+inline void append_events(EventVector& events, const Box3& bounds, int axis, uint32_t local) {
   if (bounds.min[axis] == bounds.max[axis]) {
     events.push_back({bounds.min[axis], local << 2 | kEventPlanar});
   } else {

@@ -17,6 +17,8 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstring>
+#include <memory>
 #include <mutex>
 
 namespace kdray {
@@ -30,6 +32,8 @@ uint32_t BuildSettings::resolved_max_depth(uint64_t triangles) const {
 namespace detail {
 namespace {
 
+using IndexArray = std::vector<uint32_t, UninitialisedAllocator<uint32_t>>;
+
 // Nodes with at least this many triangles build their two children in parallel.
 constexpr size_t kParallelTriangles = 4096;
 
@@ -38,8 +42,107 @@ struct NodeWork {
   uint32_t depth = 0;
   std::vector<uint32_t> triangles;  // scene triangle per local index
   std::vector<Box3> bounds;         // per local index: the triangle's bounds in this voxel
-  std::vector<Event> events[3];     // sorted
+  EventArray events[3];     // sorted
 };
+
+// A subtree of the parallel levels: an inner node with its two pieces, or (axis -1) a subtree
+// built by one thread. Pieces are joined into one array once, at the end (flatten), rather
+// than copied up level by level.
+struct Piece {
+  int axis = -1;
+  float position = 0;
+  std::unique_ptr<Piece> below, above;
+  Subtree serial;
+};
+
+void count_sizes(const Piece& piece, size_t& nodes, size_t& references) {
+  if (piece.axis < 0) {
+    nodes += piece.serial.nodes.size();
+    references += piece.serial.leaf_triangles.size();
+    return;
+  }
+  ++nodes;
+  count_sizes(*piece.below, nodes, references);
+  count_sizes(*piece.above, nodes, references);
+}
+
+void append_piece(const Piece& piece, Subtree& out) {
+  if (piece.axis < 0) {
+    out.append(piece.serial);
+    return;
+  }
+  const size_t inner = out.add_inner(piece.axis, piece.position);
+  append_piece(*piece.below, out);
+  out.set_far_child(inner, out.nodes.size());
+  append_piece(*piece.above, out);
+}
+
+Subtree flatten(Piece&& root) {
+  if (root.axis < 0) return std::move(root.serial);
+  size_t nodes = 0, references = 0;
+  count_sizes(root, nodes, references);
+  Subtree out;
+  out.nodes.reserve(nodes);
+  out.leaf_triangles.reserve(references);
+  append_piece(root, out);
+  return out;
+}
+
+// Events as 64-bit integers in the order of operator<: the position's bits made monotone in
+// the high half, the order key in the low half. -0 and +0 are equal positions but different
+// bits, so it does not apply to -0 (has_key is false).
+constexpr uint32_t kSignBit = 0x80000000u;
+inline bool has_key(const Event& event) {
+  uint32_t bits;
+  std::memcpy(&bits, &event.position, sizeof bits);
+  return bits != kSignBit;
+}
+inline uint64_t event_key(const Event& event) {
+  uint32_t bits;
+  std::memcpy(&bits, &event.position, sizeof bits);
+  const uint32_t monotone = bits & kSignBit ? ~bits : bits | kSignBit;
+  return uint64_t{monotone} << 32 | event_order_key(event.packed);
+}
+inline Event event_of_key(uint64_t key) {
+  const uint32_t monotone = static_cast<uint32_t>(key >> 32);
+  const uint32_t bits = monotone & kSignBit ? monotone & ~kSignBit : ~monotone;
+  const uint32_t order_key = static_cast<uint32_t>(key);
+  Event event;
+  std::memcpy(&event.position, &bits, sizeof bits);
+  event.packed = (order_key & kMaxLocalTriangles) << 2 | order_key >> 30;
+  return event;
+}
+
+using KeyArray = std::vector<uint64_t, UninitialisedAllocator<uint64_t>>;
+
+// Sorts events by sorting their keys (integer comparisons), unless one is -0.
+template <typename SortKeys, typename SortEvents>
+void sort_events(EventArray& events, KeyArray& keys, SortKeys sort_keys, SortEvents sort_with_comparison) {
+  if (!std::all_of(events.begin(), events.end(), has_key)) {
+    sort_with_comparison();
+    return;
+  }
+  keys.resize(events.size());
+  std::transform(events.begin(), events.end(), keys.begin(), event_key);
+  sort_keys();
+  std::transform(keys.begin(), keys.end(), events.begin(), event_of_key);
+}
+
+// The re-clipped events of one node, on this thread.
+void sort_events(EventArray& events) {
+  thread_local KeyArray keys;
+  sort_events(
+      events, keys, [&] { std::sort(keys.begin(), keys.end()); },
+      [&] { std::sort(events.begin(), events.end()); });
+}
+
+// The events of the root, in parallel.
+void parallel_sort_events(EventArray& events) {
+  KeyArray keys;
+  sort_events(
+      events, keys, [&] { tbb::parallel_sort(keys.begin(), keys.end()); },
+      [&] { tbb::parallel_sort(events.begin(), events.end()); });
+}
 
 class EventBuilder {
  public:
@@ -53,28 +156,27 @@ class EventBuilder {
 
   // Builds the subtree of `work` into `out`. Nodes with many triangles build their children
   // in parallel; below that size a thread builds the whole subtree itself (build_serial).
-  void build(NodeWork& work, Subtree& out) {
+  void build(NodeWork& work, Piece& out) {
     const size_t n = work.triangles.size();
     if (n < kParallelTriangles) {
-      build_serial(work, out);
+      build_serial(work, out.serial);
       report_finished(work.depth);
       return;
     }
     const SplitChoice split = choose_split(work);
     if (split.axis < 0) {
-      out.add_leaf(work.triangles.data(), n);
+      out.serial.add_leaf(work.triangles.data(), n);
       report_finished(work.depth);
       return;
     }
-    const size_t inner = out.add_inner(split.axis, split.position);
+    out.axis = split.axis;
+    out.position = split.position;
+    out.below = std::make_unique<Piece>();
+    out.above = std::make_unique<Piece>();
     NodeWork left, right;
     divide(work, split, left, right);
     work = NodeWork{};  // the parent's arrays are not needed while the children build
-    Subtree left_tree, right_tree;
-    tbb::parallel_invoke([&] { build(left, left_tree); }, [&] { build(right, right_tree); });
-    out.append(left_tree);
-    out.set_far_child(inner, out.nodes.size());
-    out.append(right_tree);
+    tbb::parallel_invoke([&] { build(left, *out.below); }, [&] { build(right, *out.above); });
   }
 
  private:
@@ -122,7 +224,7 @@ class EventBuilder {
     const size_t n = work.triangles.size();
     // Scratch arrays reused by each thread's nodes: allocation dominated small nodes.
     thread_local std::vector<uint8_t> sides;
-    thread_local std::vector<uint32_t> left_index, right_index;
+    thread_local IndexArray left_index, right_index;
     sides.assign(n, kBothSides);
     left_index.resize(n);
     right_index.resize(n);
@@ -140,12 +242,12 @@ class EventBuilder {
 
     // Local index of each parent triangle in each child: monotone, so the order of the kept
     // events survives. Straddlers get fresh bounds and events in each child they really reach.
-    thread_local std::vector<Event> fresh_left[3], fresh_right[3];
+    thread_local EventArray fresh_left[3], fresh_right[3];
     for (int axis = 0; axis < 3; ++axis) {
       fresh_left[axis].clear();
       fresh_right[axis].clear();
     }
-    auto place = [keep_bounds](NodeWork& child, std::vector<uint32_t>& index, std::vector<Event>* fresh, size_t i,
+    auto place = [keep_bounds](NodeWork& child, IndexArray& index, EventArray* fresh, size_t i,
                                uint32_t triangle, const Box3& bounds) {
       index[i] = static_cast<uint32_t>(child.triangles.size());
       child.triangles.push_back(triangle);
@@ -183,21 +285,21 @@ class EventBuilder {
     // parallel (the top of a tree is often a chain of empty-space cuts with no other
     // parallelism). The scratch arrays are this thread's, so they are passed on explicitly.
     const std::vector<uint8_t>& node_sides = sides;
-    const std::vector<uint32_t>& to_left_index = left_index;
-    const std::vector<uint32_t>& to_right_index = right_index;
-    std::vector<Event>* const fresh_to_left = fresh_left;
-    std::vector<Event>* const fresh_to_right = fresh_right;
-    auto split_axis = [&](int axis, std::vector<Event>& kept_left, std::vector<Event>& kept_right) {
-      split_events(work.events[axis], node_sides, to_left_index, to_right_index, fresh_to_left[axis],
+    const auto& to_left_index = left_index;
+    const auto& to_right_index = right_index;
+    EventArray* const fresh_to_left = fresh_left;
+    EventArray* const fresh_to_right = fresh_right;
+    auto split_axis = [&](int axis, EventArray& kept_left, EventArray& kept_right) {
+      split_events(work.events[axis], node_sides, to_left_index.data(), to_right_index.data(), fresh_to_left[axis],
                    fresh_to_right[axis], kept_left, kept_right, left.events[axis], right.events[axis]);
     };
     if (n >= kParallelTriangles) {
       tbb::parallel_for(0, 3, [&](int axis) {
-        std::vector<Event> kept_left, kept_right;
+        EventArray kept_left, kept_right;
         split_axis(axis, kept_left, kept_right);
       });
     } else {
-      thread_local std::vector<Event> kept_left, kept_right;
+      thread_local EventArray kept_left, kept_right;
       for (int axis = 0; axis < 3; ++axis) split_axis(axis, kept_left, kept_right);
     }
   }
@@ -207,13 +309,13 @@ class EventBuilder {
   // sides of neighbouring events are unpredictable): every event is written to both outputs,
   // and each output advances only over its own. Kept events go straight to the child when
   // there is nothing to merge in.
-  static void split_events(const std::vector<Event>& events, const std::vector<uint8_t>& sides,
-                           const std::vector<uint32_t>& left_index, const std::vector<uint32_t>& right_index,
-                           std::vector<Event>& fresh_left, std::vector<Event>& fresh_right,
-                           std::vector<Event>& kept_left, std::vector<Event>& kept_right,
-                           std::vector<Event>& left_events, std::vector<Event>& right_events) {
-    std::vector<Event>& to_left = fresh_left.empty() ? left_events : kept_left;
-    std::vector<Event>& to_right = fresh_right.empty() ? right_events : kept_right;
+  static void split_events(const EventArray& events, const std::vector<uint8_t>& sides,
+                           const uint32_t* left_index, const uint32_t* right_index,
+                           EventArray& fresh_left, EventArray& fresh_right,
+                           EventArray& kept_left, EventArray& kept_right,
+                           EventArray& left_events, EventArray& right_events) {
+    EventArray& to_left = fresh_left.empty() ? left_events : kept_left;
+    EventArray& to_right = fresh_right.empty() ? right_events : kept_right;
     to_left.resize(events.size());
     to_right.resize(events.size());
     Event* l = to_left.data();
@@ -234,9 +336,9 @@ class EventBuilder {
   }
 
   // Merges sorted re-clipped events into the kept ones (already in `out` when there are none).
-  static void merge_fresh(const std::vector<Event>& kept, std::vector<Event>& fresh, std::vector<Event>& out) {
+  static void merge_fresh(const EventArray& kept, EventArray& fresh, EventArray& out) {
     if (fresh.empty()) return;
-    std::sort(fresh.begin(), fresh.end());
+    sort_events(fresh);
     out.resize(kept.size() + fresh.size());
     std::merge(kept.begin(), kept.end(), fresh.begin(), fresh.end(), out.begin());
   }
@@ -280,14 +382,16 @@ KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const Bui
     work.triangles = std::move(root.triangles);
     work.bounds = std::move(root.bounds);
     tbb::parallel_for(0, 3, [&](int axis) {
-      std::vector<detail::Event>& events = work.events[axis];
+      detail::EventArray& events = work.events[axis];
       events.reserve(2 * work.triangles.size());
       for (size_t i = 0; i < work.triangles.size(); ++i)
         detail::append_events(events, work.bounds[i], axis, static_cast<uint32_t>(i));
-      tbb::parallel_sort(events.begin(), events.end());
+      detail::parallel_sort_events(events);
     });
     detail::EventBuilder builder(scene, settings, control, work.triangles.size());
-    builder.build(work, built);
+    detail::Piece root_piece;
+    builder.build(work, root_piece);
+    built = detail::flatten(std::move(root_piece));
   });
   if (control.progress) control.progress(1.0);
   return detail::finish_tree(scene, settings, root.voxel, std::move(built));

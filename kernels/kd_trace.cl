@@ -6,14 +6,12 @@
 #define KD_TRACE_BATCH 32u
 
 __kernel void kd_trace_closest(__global const KdNode* nodes, __global const kd_u32* leaf_triangles,
-                               __global const kd_u32* indices, __global const float* positions,
-                               float4 bounds_min, float4 bounds_max, __global const RayRecord* rays,
+                               __global const float* triangle_vertices, float4 bounds_min, float4 bounds_max, __global const RayRecord* rays,
                                uint ray_count, __global HitRecord* hits, __global uint* next_ray) {
   KdSceneView scene;
   scene.nodes = nodes;
   scene.leaf_triangles = leaf_triangles;
-  scene.indices = indices;
-  scene.positions = positions;
+  scene.triangle_vertices = triangle_vertices;
   scene.bounds_min[0] = bounds_min.x;
   scene.bounds_min[1] = bounds_min.y;
   scene.bounds_min[2] = bounds_min.z;

@@ -3,10 +3,9 @@
  *
  *   typedef struct KdSceneView {
  *     KD_GLOBAL const KdNode* nodes;          root at index 0
- *     KD_GLOBAL const kd_u32* leaf_triangles; leaves are ranges of this array
- *     KD_GLOBAL const kd_u32* indices;        3 per triangle
- *     KD_GLOBAL const float* positions;       3 floats per vertex
- *     float bounds_min[3], bounds_max[3];     root voxel
+ *     KD_GLOBAL const kd_u32* leaf_triangles;  leaves are ranges of this array
+ *     KD_GLOBAL const float* triangle_vertices; KD_TRIANGLE_FLOATS per triangle (see below)
+ *     float bounds_min[3], bounds_max[3];      root voxel
  *   } KdSceneView;
  *
  *   HitRecord kd_intersect_closest(const KdSceneView* scene, RayRecord ray);
@@ -57,11 +56,17 @@
 #define KD_SHORT_STACK_SIZE 8
 #endif
 
+/* Triangle t's corners a, b, c are triangle_vertices[KD_TRIANGLE_FLOATS * t + 4 * corner + axis]
+ * (the fourth float of each corner is padding): copies of the scene's positions gathered once
+ * by the host, so that a triangle test is one contiguous 48-byte fetch instead of a chain of
+ * leaf entry -> index -> vertex cache misses. Indexed by triangle id, not by leaf entry, so it
+ * costs one copy of the vertices however many leaves reference a triangle. */
+#define KD_TRIANGLE_FLOATS 12u
+
 typedef struct KdSceneView {
   KD_GLOBAL const KdNode* nodes;
   KD_GLOBAL const kd_u32* leaf_triangles;
-  KD_GLOBAL const kd_u32* indices;
-  KD_GLOBAL const float* positions;
+  KD_GLOBAL const float* triangle_vertices;
   float bounds_min[3], bounds_max[3];
 } KdSceneView;
 
@@ -70,10 +75,10 @@ typedef struct KdStackEntry {
   float t_min, t_max;
 } KdStackEntry;
 
-KD_INLINE void kd_load_vertex(const KdSceneView* scene, kd_u32 vertex, float out[3]) {
-  out[0] = scene->positions[3u * vertex + 0u];
-  out[1] = scene->positions[3u * vertex + 1u];
-  out[2] = scene->positions[3u * vertex + 2u];
+KD_INLINE void kd_load_corner(KD_GLOBAL const float* triangle, kd_u32 corner, float out[3]) {
+  out[0] = triangle[4u * corner + 0u];
+  out[1] = triangle[4u * corner + 1u];
+  out[2] = triangle[4u * corner + 2u];
 }
 
 /* Tests the leaf's triangles against (ray.tmin, hit->t); returns 1 if hit->t got smaller. */
@@ -84,10 +89,11 @@ KD_INLINE int kd_intersect_leaf(const KdSceneView* scene, const KdRay* ray, KdNo
   const kd_u32 count = kd_leaf_count(leaf);
   for (kd_u32 i = 0; i < count; ++i) {
     const kd_u32 triangle = scene->leaf_triangles[first + i];
+    KD_GLOBAL const float* corners = scene->triangle_vertices + KD_TRIANGLE_FLOATS * triangle;
     float a[3], b[3], c[3];
-    kd_load_vertex(scene, scene->indices[3u * triangle + 0u], a);
-    kd_load_vertex(scene, scene->indices[3u * triangle + 1u], b);
-    kd_load_vertex(scene, scene->indices[3u * triangle + 2u], c);
+    kd_load_corner(corners, 0u, a);
+    kd_load_corner(corners, 1u, b);
+    kd_load_corner(corners, 2u, c);
     float t, u, v;
     if (kd_ray_triangle(ray, a, b, c, hit->t, &t, &u, &v)) {
       hit->t = t;

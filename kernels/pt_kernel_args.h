@@ -8,14 +8,15 @@
 #include "pt_path.h"
 
 #define PT_SCENE_ARGS                                                                              \
-  __global const KdNode *nodes, __global const kd_u32 *leaf_triangles, __global const kd_u32 *indices,   \
-      __global const float *positions, __global const kd_u32 *material_ids,                              \
+  __global const KdNode *nodes, __global const kd_u32 *leaf_triangles,                                   \
+      __global const float *triangle_vertices, __global const kd_u32 *indices,                           \
+      __global const kd_u32 *material_ids,                                                               \
       __global const PtMaterial *materials, __global const float *normals, __global const float *uvs,    \
       __global const PtTexture *textures, __global const float4 *texels, __global const PtLight *lights, \
       __global const PtRenderParams *params
 
 inline PtSceneData pt_make_scene(__global const KdNode* nodes, __global const kd_u32* leaf_triangles,
-                                 __global const kd_u32* indices, __global const float* positions,
+                                 __global const float* triangle_vertices, __global const kd_u32* indices,
                                  __global const kd_u32* material_ids, __global const PtMaterial* materials,
                                  __global const float* normals, __global const float* uvs,
                                  __global const PtTexture* textures, __global const float4* texels,
@@ -23,12 +24,12 @@ inline PtSceneData pt_make_scene(__global const KdNode* nodes, __global const kd
   PtSceneData scene;
   scene.kd.nodes = nodes;
   scene.kd.leaf_triangles = leaf_triangles;
-  scene.kd.indices = indices;
-  scene.kd.positions = positions;
+  scene.kd.triangle_vertices = triangle_vertices;
   for (int i = 0; i < 3; ++i) {
     scene.kd.bounds_min[i] = params->bounds_min[i];
     scene.kd.bounds_max[i] = params->bounds_max[i];
   }
+  scene.indices = indices;
   scene.material_ids = material_ids;
   scene.materials = materials;
   scene.normals = normals;
@@ -39,8 +40,8 @@ inline PtSceneData pt_make_scene(__global const KdNode* nodes, __global const kd
   return scene;
 }
 #define PT_MAKE_SCENE()                                                                               \
-  pt_make_scene(nodes, leaf_triangles, indices, positions, material_ids, materials, normals, uvs, \
-                textures, texels, lights, params)
+  pt_make_scene(nodes, leaf_triangles, triangle_vertices, indices, material_ids, materials, normals, \
+                uvs, textures, texels, lights, params)
 
 /* stats[0]: rays traced, stats[1]: non-finite sample values. */
 inline void pt_add_stats(__global ulong* stats, ulong rays, uint nonfinite) {

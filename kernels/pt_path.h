@@ -14,7 +14,8 @@
 #define PT_ROULETTE_START 3u
 
 typedef struct PtSceneData {
-  KdSceneView kd;
+  KdSceneView kd;                  /* its triangle_vertices also give the shading positions */
+  __global const kd_u32* indices;  /* 3 per triangle: vertex numbers of normals and uvs */
   __global const kd_u32* material_ids;
   __global const PtMaterial* materials;
   __global const float* normals;  /* KD_FEATURE_NORMALS */
@@ -36,6 +37,11 @@ typedef struct PtPath {
   kd_i32 alive, shadow_pending, pad;
 } PtPath;
 typedef char pt_path_size_check[sizeof(PtPath) == PT_PATH_BYTES ? 1 : -1];
+
+/* Corner 0, 1 or 2 of a triangle, from the traversal's gathered vertices. */
+inline float3 pt_corner(const KdSceneView* kd, uint triangle, uint corner) {
+  return vload4(0, kd->triangle_vertices + KD_TRIANGLE_FLOATS * triangle + 4 * corner).xyz;
+}
 
 inline RayRecord pt_ray(float3 origin, float3 direction, float tmax) {
   RayRecord ray;
@@ -112,10 +118,9 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const
   uint k = path->bounce;
   float u_pick = pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_LIGHT_PICK);
   uint tri = pt_pick_light(scene->lights, params->light_count, u_pick);
-  __global const kd_u32* idx = scene->kd.indices + 3 * tri;
-  float3 q0 = pt_load3(scene->kd.positions, idx[0]);
-  float3 q1 = pt_load3(scene->kd.positions, idx[1]);
-  float3 q2 = pt_load3(scene->kd.positions, idx[2]);
+  float3 q0 = pt_corner(&scene->kd, tri, 0);
+  float3 q1 = pt_corner(&scene->kd, tri, 1);
+  float3 q2 = pt_corner(&scene->kd, tri, 2);
   float2 b = pt_sample_triangle(pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_LIGHT_U),
                                 pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_LIGHT_V));
   float3 y = q0 + b.x * (q1 - q0) + b.y * (q2 - q0);
@@ -152,10 +157,10 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
     return;
   }
   uint k = path->bounce;
-  __global const kd_u32* idx = scene->kd.indices + 3 * hit.triangle;
-  float3 p0 = pt_load3(scene->kd.positions, idx[0]);
-  float3 p1 = pt_load3(scene->kd.positions, idx[1]);
-  float3 p2 = pt_load3(scene->kd.positions, idx[2]);
+  __global const kd_u32* idx = scene->indices + 3 * hit.triangle;
+  float3 p0 = pt_corner(&scene->kd, hit.triangle, 0);
+  float3 p1 = pt_corner(&scene->kd, hit.triangle, 1);
+  float3 p2 = pt_corner(&scene->kd, hit.triangle, 2);
   float w0 = 1.0f - hit.u - hit.v;
   float3 p = w0 * p0 + hit.u * p1 + hit.v * p2;
   float3 wo = -path->direction.xyz;

@@ -14,8 +14,7 @@ namespace kdray::detail {
 struct TraversalArrays {
   const KdNode* nodes;
   const uint32_t* leaf_triangles;
-  const uint32_t* indices;
-  const float* positions;
+  const float* triangle_vertices;  // KD_TRIANGLE_FLOATS per triangle: gather_triangle_vertices
   float bounds_min[3], bounds_max[3];
 };
 

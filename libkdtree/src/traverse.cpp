@@ -2,6 +2,8 @@
 
 #include "traversal_variant.h"
 
+#include <kernels/kd_traverse.h>
+
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -10,12 +12,11 @@
 namespace kdray {
 namespace {
 
-detail::TraversalArrays arrays_of(const Scene& scene, const KdTree& tree) {
+detail::TraversalArrays arrays_of(const KdTree& tree, const std::vector<float>& triangle_vertices) {
   detail::TraversalArrays arrays{};
   arrays.nodes = tree.nodes.data();
   arrays.leaf_triangles = tree.leaf_triangles.data();
-  arrays.indices = scene.indices.data();
-  arrays.positions = reinterpret_cast<const float*>(scene.positions.data());
+  arrays.triangle_vertices = triangle_vertices.data();
   const float* lo = &tree.bounds.min.x;
   const float* hi = &tree.bounds.max.x;
   for (int k = 0; k < 3; ++k) {
@@ -47,10 +48,26 @@ void parallel_chunks(size_t count, unsigned threads, const Body& body) {
 
 }  // namespace
 
+std::vector<float> gather_triangle_vertices(const Scene& scene) {
+  const size_t triangles = scene.triangle_count();
+  std::vector<float> vertices(triangles * KD_TRIANGLE_FLOATS, 0.0f);
+  for (size_t triangle = 0; triangle < triangles; ++triangle) {
+    float* corners = vertices.data() + triangle * KD_TRIANGLE_FLOATS;
+    for (size_t corner = 0; corner < 3; ++corner) {
+      const Vec3& p = scene.positions[scene.indices[3 * triangle + corner]];
+      corners[4 * corner + 0] = p.x;
+      corners[4 * corner + 1] = p.y;
+      corners[4 * corner + 2] = p.z;
+    }
+  }
+  return vertices;
+}
+
 void trace_closest(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
                    std::vector<HitRecord>& hits, const TraceOptions& options) {
   hits.resize(rays.size());
-  const detail::TraversalArrays arrays = arrays_of(scene, tree);
+  const std::vector<float> triangle_vertices = gather_triangle_vertices(scene);
+  const detail::TraversalArrays arrays = arrays_of(tree, triangle_vertices);
   const detail::TraversalVariant& variant = variant_of(options.stack);
   parallel_chunks(rays.size(), options.threads, [&](size_t begin, size_t end) {
     variant.closest(arrays, rays.data() + begin, hits.data() + begin, end - begin);
@@ -60,7 +77,8 @@ void trace_closest(const Scene& scene, const KdTree& tree, const std::vector<Ray
 void trace_any(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
                std::vector<uint8_t>& occluded, const TraceOptions& options) {
   occluded.resize(rays.size());
-  const detail::TraversalArrays arrays = arrays_of(scene, tree);
+  const std::vector<float> triangle_vertices = gather_triangle_vertices(scene);
+  const detail::TraversalArrays arrays = arrays_of(tree, triangle_vertices);
   const detail::TraversalVariant& variant = variant_of(options.stack);
   parallel_chunks(rays.size(), options.threads, [&](size_t begin, size_t end) {
     variant.any(arrays, rays.data() + begin, occluded.data() + begin, end - begin);
@@ -69,7 +87,7 @@ void trace_any(const Scene& scene, const KdTree& tree, const std::vector<RayReco
 
 HitRecord intersect_closest(const Scene& scene, const KdTree& tree, const RayRecord& ray, TraversalStack stack) {
   HitRecord hit;
-  variant_of(stack).closest(arrays_of(scene, tree), &ray, &hit, 1);
+  variant_of(stack).closest(arrays_of(tree, gather_triangle_vertices(scene)), &ray, &hit, 1);
   return hit;
 }
 

@@ -1,6 +1,8 @@
 // Scene and tree upload (see device_scene.h).
 #include "device_scene.h"
 
+#include <kdray/traverse.h>
+
 #include <kernels/pt_types.h>
 
 #include <cmath>
@@ -35,8 +37,8 @@ DeviceGeometry upload_geometry(cl::Runtime& runtime, const Scene& scene, const K
   DeviceGeometry geometry;
   geometry.nodes = upload_vector(runtime, tree.nodes);
   geometry.leaf_triangles = upload_vector(runtime, tree.leaf_triangles);
+  geometry.triangle_vertices = upload_vector(runtime, gather_triangle_vertices(scene));
   geometry.indices = upload_vector(runtime, scene.indices);
-  geometry.positions = upload_vector(runtime, scene.positions);
   const Vec3& lo = tree.bounds.min;
   const Vec3& hi = tree.bounds.max;
   float min[3] = {lo.x, lo.y, lo.z}, max[3] = {hi.x, hi.y, hi.z};
@@ -103,8 +105,8 @@ DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree&
 }
 
 cl_uint bind_scene_args(cl_kernel kernel, const DeviceScene& scene, const cl::Buffer& params) {
-  const cl::Buffer* buffers[] = {&scene.geometry.nodes, &scene.geometry.leaf_triangles, &scene.geometry.indices,
-                                 &scene.geometry.positions, &scene.material_ids, &scene.materials, &scene.normals,
+  const cl::Buffer* buffers[] = {&scene.geometry.nodes, &scene.geometry.leaf_triangles,
+                                 &scene.geometry.triangle_vertices, &scene.geometry.indices, &scene.material_ids, &scene.materials, &scene.normals,
                                  &scene.uvs, &scene.textures, &scene.texels, &scene.lights, &params};
   cl_uint index = 0;
   for (const cl::Buffer* buffer : buffers) cl::set_arg(kernel, index++, *buffer);

@@ -10,7 +10,9 @@
 namespace kdray {
 
 struct DeviceGeometry {
-  cl::Buffer nodes, leaf_triangles, indices, positions;
+  cl::Buffer nodes, leaf_triangles;
+  cl::Buffer triangle_vertices;  // gather_triangle_vertices: what traversal and shading read
+  cl::Buffer indices;            // 3 per triangle: vertex numbers of normals and uvs
   float bounds_min[3] = {0, 0, 0}, bounds_max[3] = {0, 0, 0};
 };
 

@@ -35,8 +35,7 @@ std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree,
   cl_uint arg = 0;
   cl::set_arg(kernel.get(), arg++, geometry.nodes);
   cl::set_arg(kernel.get(), arg++, geometry.leaf_triangles);
-  cl::set_arg(kernel.get(), arg++, geometry.indices);
-  cl::set_arg(kernel.get(), arg++, geometry.positions);
+  cl::set_arg(kernel.get(), arg++, geometry.triangle_vertices);
   cl::set_arg(kernel.get(), arg++, bounds_min);
   cl::set_arg(kernel.get(), arg++, bounds_max);
   cl::set_arg(kernel.get(), arg++, ray_buffer);

@@ -25,14 +25,12 @@ __kernel void report_features(__global int* out) {
 }
 
 __kernel void trace_closest(__global const KdNode* nodes, __global const kd_u32* leaf_triangles,
-                            __global const kd_u32* indices, __global const float* positions,
-                            __global const float* bounds, __global const RayRecord* rays,
+                            __global const float* triangle_vertices, __global const float* bounds, __global const RayRecord* rays,
                             __global HitRecord* hits) {
   KdSceneView scene;
   scene.nodes = nodes;
   scene.leaf_triangles = leaf_triangles;
-  scene.indices = indices;
-  scene.positions = positions;
+  scene.triangle_vertices = triangle_vertices;
   for (int k = 0; k < 3; ++k) {
     scene.bounds_min[k] = bounds[k];
     scene.bounds_max[k] = bounds[3 + k];
@@ -133,13 +131,13 @@ TEST(KdOpenCl, KernelTraversalMatchesCpuWithDepthOneStack) {
 
   const float bounds[6] = {tree.bounds.min.x, tree.bounds.min.y, tree.bounds.min.z,
                            tree.bounds.max.x, tree.bounds.max.y, tree.bounds.max.z};
+  const std::vector<float> triangle_vertices = gather_triangle_vertices(scene);
   std::vector<HitRecord> gpu(rays.size());
   cl_mem hits = device.buffer(gpu.data(), gpu.size() * sizeof(HitRecord));
   device.run("trace_closest",
              {device.buffer(tree.nodes.data(), tree.nodes.size() * sizeof(KdNode)),
               device.buffer(tree.leaf_triangles.data(), tree.leaf_triangles.size() * 4),
-              device.buffer(scene.indices.data(), scene.indices.size() * 4),
-              device.buffer(scene.positions.data(), scene.positions.size() * sizeof(Vec3)),
+              device.buffer(triangle_vertices.data(), triangle_vertices.size() * sizeof(float)),
               device.buffer(bounds, sizeof bounds),
               device.buffer(rays.data(), rays.size() * sizeof(RayRecord)), hits},
              rays.size(), hits, gpu.data(), gpu.size() * sizeof(HitRecord));

@@ -24,6 +24,12 @@ struct TraceOptions {
   TraversalStack stack = TraversalStack::Short;
 };
 
+// The triangle layout traversal reads (KdSceneView.triangle_vertices in kernels/kd_traverse.h):
+// KD_TRIANGLE_FLOATS floats per triangle, its three corners copied from the scene's positions
+// (12 floats, 48 bytes per triangle). trace_closest and trace_any gather it on each call;
+// device code uploads it next to the tree.
+std::vector<float> gather_triangle_vertices(const Scene& scene);
+
 // Closest hit per ray (t = +inf, triangle = KD_NO_HIT on a miss). The tree must match the
 // scene (check_tree_matches_scene). hits is resized to rays.size().
 void trace_closest(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
@@ -33,7 +39,8 @@ void trace_closest(const Scene& scene, const KdTree& tree, const std::vector<Ray
 void trace_any(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
                std::vector<uint8_t>& occluded, const TraceOptions& options = {});
 
-// One ray, on the calling thread.
+// One ray, on the calling thread. Gathers the triangle vertices for this one ray, so it is for
+// tests and single queries; batches belong in trace_closest.
 HitRecord intersect_closest(const Scene& scene, const KdTree& tree, const RayRecord& ray,
                             TraversalStack stack = TraversalStack::Short);
 

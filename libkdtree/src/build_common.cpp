@@ -180,6 +180,8 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
   if (!(half_area > 0.0)) return;  // a voxel without area: no split can pay
   const double inverse_half_area = 1.0 / half_area;
   uint64_t n_left = 0, n_right = triangles;
+  // A local copy: `best` might alias the events, which would force reloads.
+  SplitChoice best_here = best;
   size_t i = 0;
   while (i < count) {
     // Events of one position come ends first, then planar, then starts (the event order), so
@@ -211,9 +213,11 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
       planar_left = planar_left_cost <= planar_right_cost;
       split_cost = planar_left ? planar_left_cost : planar_right_cost;
     }
-    if (best.axis < 0 || split_cost < best.cost) best = SplitChoice{split_cost, axis, position, planar_left};
+    if (best_here.axis < 0 || split_cost < best_here.cost)
+      best_here = SplitChoice{split_cost, axis, position, planar_left};
     n_left += starting + planar;
   }
+  best = best_here;
 }
 
 void classify(const Event* events, size_t count, const SplitChoice& split, uint8_t* sides) {

@@ -340,7 +340,21 @@ class EventBuilder {
     if (fresh.empty()) return;
     sort_events(fresh);
     out.resize(kept.size() + fresh.size());
-    std::merge(kept.begin(), kept.end(), fresh.begin(), fresh.end(), out.begin());
+    merge_events(kept.data(), kept.data() + kept.size(), fresh.data(), fresh.data() + fresh.size(), out.data());
+  }
+
+  // std::merge for operator<, without a branch on which list the next event comes from (that
+  // is unpredictable); the comparison is operator<'s, written with bitwise operators.
+  static void merge_events(const Event* a, const Event* a_end, const Event* b, const Event* b_end, Event* out) {
+    while (a != a_end && b != b_end) {
+      const bool take_b = (b->position < a->position) |
+                          ((b->position == a->position) & (event_order_key(b->packed) < event_order_key(a->packed)));
+      *out++ = take_b ? *b : *a;
+      b += take_b;
+      a += !take_b;
+    }
+    out = std::copy(a, a_end, out);
+    std::copy(b, b_end, out);
   }
 
   // Progress is the share of the tree's "mass" in finished subtrees, a subtree at depth d

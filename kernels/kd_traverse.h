@@ -56,12 +56,12 @@
 #define KD_SHORT_STACK_SIZE 8
 #endif
 
-/* Triangle t's corners a, b, c are triangle_vertices[KD_TRIANGLE_FLOATS * t + 4 * corner + axis]
- * (the fourth float of each corner is padding): copies of the scene's positions gathered once
- * by the host, so that a triangle test is one contiguous 48-byte fetch instead of a chain of
- * leaf entry -> index -> vertex cache misses. Indexed by triangle id, not by leaf entry, so it
- * costs one copy of the vertices however many leaves reference a triangle. */
-#define KD_TRIANGLE_FLOATS 12u
+/* Triangle t's corners a, b, c are triangle_vertices[KD_TRIANGLE_FLOATS * t + 3 * corner + axis]:
+ * copies of the scene's positions gathered once by the host, so that a triangle test is one
+ * contiguous 36-byte fetch instead of a chain of leaf entry -> index -> vertex cache misses.
+ * Indexed by triangle id, not by leaf entry: one copy of the vertices however many leaves
+ * reference a triangle (a leaf-ordered copy would be ~5x larger, and measured slower). */
+#define KD_TRIANGLE_FLOATS 9u
 
 typedef struct KdSceneView {
   KD_GLOBAL const KdNode* nodes;
@@ -76,9 +76,9 @@ typedef struct KdStackEntry {
 } KdStackEntry;
 
 KD_INLINE void kd_load_corner(KD_GLOBAL const float* triangle, kd_u32 corner, float out[3]) {
-  out[0] = triangle[4u * corner + 0u];
-  out[1] = triangle[4u * corner + 1u];
-  out[2] = triangle[4u * corner + 2u];
+  out[0] = triangle[3u * corner + 0u];
+  out[1] = triangle[3u * corner + 1u];
+  out[2] = triangle[3u * corner + 2u];
 }
 
 /* Tests the leaf's triangles against (ray.tmin, hit->t); returns 1 if hit->t got smaller. */

@@ -40,7 +40,7 @@ typedef char pt_path_size_check[sizeof(PtPath) == PT_PATH_BYTES ? 1 : -1];
 
 /* Corner 0, 1 or 2 of a triangle, from the traversal's gathered vertices. */
 inline float3 pt_corner(const KdSceneView* kd, uint triangle, uint corner) {
-  return vload4(0, kd->triangle_vertices + KD_TRIANGLE_FLOATS * triangle + 4 * corner).xyz;
+  return vload3(corner, kd->triangle_vertices + KD_TRIANGLE_FLOATS * triangle);
 }
 
 inline RayRecord pt_ray(float3 origin, float3 direction, float tmax) {

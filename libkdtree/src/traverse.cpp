@@ -55,9 +55,9 @@ std::vector<float> gather_triangle_vertices(const Scene& scene) {
     float* corners = vertices.data() + triangle * KD_TRIANGLE_FLOATS;
     for (size_t corner = 0; corner < 3; ++corner) {
       const Vec3& p = scene.positions[scene.indices[3 * triangle + corner]];
-      corners[4 * corner + 0] = p.x;
-      corners[4 * corner + 1] = p.y;
-      corners[4 * corner + 2] = p.z;
+      corners[3 * corner + 0] = p.x;
+      corners[3 * corner + 1] = p.y;
+      corners[3 * corner + 2] = p.z;
     }
   }
   return vertices;

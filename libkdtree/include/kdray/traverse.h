@@ -26,7 +26,7 @@ struct TraceOptions {
 
 // The triangle layout traversal reads (KdSceneView.triangle_vertices in kernels/kd_traverse.h):
 // KD_TRIANGLE_FLOATS floats per triangle, its three corners copied from the scene's positions
-// (12 floats, 48 bytes per triangle). trace_closest and trace_any gather it on each call;
+// (9 floats, 36 bytes per triangle). trace_closest and trace_any gather it on each call;
 // device code uploads it next to the tree.
 std::vector<float> gather_triangle_vertices(const Scene& scene);
 

@@ -32,8 +32,6 @@ uint32_t BuildSettings::resolved_max_depth(uint64_t triangles) const {
 namespace detail {
 namespace {
 
-using IndexArray = std::vector<uint32_t, UninitialisedAllocator<uint32_t>>;
-
 // Nodes with at least this many triangles build their two children in parallel.
 constexpr size_t kParallelTriangles = 4096;
 
@@ -42,7 +40,7 @@ struct NodeWork {
   uint32_t depth = 0;
   std::vector<uint32_t> triangles;  // scene triangle per local index
   std::vector<Box3> bounds;         // per local index: the triangle's bounds in this voxel
-  EventArray events[3];     // sorted
+  EventArray events[3];             // sorted
 };
 
 // A subtree of the parallel levels: an inner node with its two pieces, or (axis -1) a subtree
@@ -224,10 +222,14 @@ class EventBuilder {
     const size_t n = work.triangles.size();
     // Scratch arrays reused by each thread's nodes: allocation dominated small nodes.
     thread_local std::vector<uint8_t> sides;
-    thread_local IndexArray left_index, right_index;
+    thread_local std::vector<uint32_t> left_index, right_index;
     sides.assign(n, kBothSides);
-    left_index.resize(n);
-    right_index.resize(n);
+    // Only grown, never shrunk: entries of triangles a child does not get are read (and their
+    // events dropped), so they must hold some value, and growing zero-fills only new entries.
+    if (left_index.size() < n) {
+      left_index.resize(n);
+      right_index.resize(n);
+    }
     classify(work.events[split.axis].data(), work.events[split.axis].size(), split, sides.data());
     left.voxel = below_plane(work.voxel, split.axis, split.position);
     right.voxel = above_plane(work.voxel, split.axis, split.position);
@@ -247,7 +249,7 @@ class EventBuilder {
       fresh_left[axis].clear();
       fresh_right[axis].clear();
     }
-    auto place = [keep_bounds](NodeWork& child, IndexArray& index, EventArray* fresh, size_t i,
+    auto place = [keep_bounds](NodeWork& child, std::vector<uint32_t>& index, EventArray* fresh, size_t i,
                                uint32_t triangle, const Box3& bounds) {
       index[i] = static_cast<uint32_t>(child.triangles.size());
       child.triangles.push_back(triangle);
@@ -343,8 +345,9 @@ class EventBuilder {
     merge_events(kept.data(), kept.data() + kept.size(), fresh.data(), fresh.data() + fresh.size(), out.data());
   }
 
-  // std::merge for operator<, without a branch on which list the next event comes from (that
-  // is unpredictable); the comparison is operator<'s, written with bitwise operators.
+  // std::merge for operator<, choosing the next event's list by a computed flag rather than an
+  // if, as which list it comes from is unpredictable; the flag is operator<, with bitwise
+  // operators.
   static void merge_events(const Event* a, const Event* a_end, const Event* b, const Event* b_end, Event* out) {
     while (a != a_end && b != b_end) {
       const bool take_b = (b->position < a->position) |

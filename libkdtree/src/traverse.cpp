@@ -63,26 +63,37 @@ std::vector<float> gather_triangle_vertices(const Scene& scene) {
   return vertices;
 }
 
-void trace_closest(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
-                   std::vector<HitRecord>& hits, const TraceOptions& options) {
+PreparedTraversal::PreparedTraversal(const Scene& scene, const KdTree& tree)
+    : tree_(tree), triangle_vertices_(gather_triangle_vertices(scene)) {}
+
+void PreparedTraversal::closest(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
+                                const TraceOptions& options) const {
   hits.resize(rays.size());
-  const std::vector<float> triangle_vertices = gather_triangle_vertices(scene);
-  const detail::TraversalArrays arrays = arrays_of(tree, triangle_vertices);
+  const detail::TraversalArrays arrays = arrays_of(tree_, triangle_vertices_);
   const detail::TraversalVariant& variant = variant_of(options.stack);
   parallel_chunks(rays.size(), options.threads, [&](size_t begin, size_t end) {
     variant.closest(arrays, rays.data() + begin, hits.data() + begin, end - begin);
   });
 }
 
-void trace_any(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
-               std::vector<uint8_t>& occluded, const TraceOptions& options) {
+void PreparedTraversal::any(const std::vector<RayRecord>& rays, std::vector<uint8_t>& occluded,
+                            const TraceOptions& options) const {
   occluded.resize(rays.size());
-  const std::vector<float> triangle_vertices = gather_triangle_vertices(scene);
-  const detail::TraversalArrays arrays = arrays_of(tree, triangle_vertices);
+  const detail::TraversalArrays arrays = arrays_of(tree_, triangle_vertices_);
   const detail::TraversalVariant& variant = variant_of(options.stack);
   parallel_chunks(rays.size(), options.threads, [&](size_t begin, size_t end) {
     variant.any(arrays, rays.data() + begin, occluded.data() + begin, end - begin);
   });
+}
+
+void trace_closest(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
+                   std::vector<HitRecord>& hits, const TraceOptions& options) {
+  PreparedTraversal(scene, tree).closest(rays, hits, options);
+}
+
+void trace_any(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
+               std::vector<uint8_t>& occluded, const TraceOptions& options) {
+  PreparedTraversal(scene, tree).any(rays, occluded, options);
 }
 
 HitRecord intersect_closest(const Scene& scene, const KdTree& tree, const RayRecord& ray, TraversalStack stack) {

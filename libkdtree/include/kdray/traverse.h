@@ -26,16 +26,31 @@ struct TraceOptions {
 
 // The triangle layout traversal reads (KdSceneView.triangle_vertices in kernels/kd_traverse.h):
 // KD_TRIANGLE_FLOATS floats per triangle, its three corners copied from the scene's positions
-// (9 floats, 36 bytes per triangle). trace_closest and trace_any gather it on each call;
-// device code uploads it next to the tree.
+// (9 floats, 36 bytes per triangle). PreparedTraversal gathers it once; device code uploads it
+// next to the tree.
 std::vector<float> gather_triangle_vertices(const Scene& scene);
 
-// Closest hit per ray (t = +inf, triangle = KD_NO_HIT on a miss). The tree must match the
-// scene (check_tree_matches_scene). hits is resized to rays.size().
+// A scene and its tree ready for batches of rays: the triangle vertices gathered once, so
+// repeated batches (and timings of them) do not pay for it again. Keeps references to both.
+class PreparedTraversal {
+ public:
+  PreparedTraversal(const Scene& scene, const KdTree& tree);
+
+  // Closest hit per ray (t = +inf, triangle = KD_NO_HIT on a miss). The tree must match the
+  // scene (check_tree_matches_scene). hits is resized to rays.size().
+  void closest(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits, const TraceOptions& options = {}) const;
+
+  // 1 per ray that hits anything with tmin < t < tmax, else 0.
+  void any(const std::vector<RayRecord>& rays, std::vector<uint8_t>& occluded, const TraceOptions& options = {}) const;
+
+ private:
+  const KdTree& tree_;
+  std::vector<float> triangle_vertices_;
+};
+
+// One-batch forms of PreparedTraversal::closest and ::any.
 void trace_closest(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
                    std::vector<HitRecord>& hits, const TraceOptions& options = {});
-
-// 1 per ray that hits anything with tmin < t < tmax, else 0.
 void trace_any(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
                std::vector<uint8_t>& occluded, const TraceOptions& options = {});
 

@@ -9,7 +9,7 @@ packages=(
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo
   libopenimageio-dev openimageio-tools libimath-dev
   libgtest-dev googletest
-  python3-matplotlib python3-numpy
+  python3-matplotlib python3-numpy bc
 )
 missing=()
 for package in "${packages[@]}"; do

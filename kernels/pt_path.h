@@ -55,13 +55,18 @@ inline RayRecord pt_ray(float3 origin, float3 direction, float tmax) {
   ray.tmax = tmax;
   return ray;
 }
+/* Sample value `dim` (PT_DIM_*, kernels/pt_rng.h) of the path's current bounce. */
+inline float pt_path_sample(const PtPath* path, __global const PtRenderParams* params, uint dim) {
+  return pt_sample(params->sampler, params->seed, path->pixel, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim);
+}
+
 inline RayRecord pt_path_ray(const PtPath* path) { return pt_ray(path->origin.xyz, path->direction.xyz, INFINITY); }
 inline RayRecord pt_shadow_ray(const PtPath* path) { return pt_ray(path->shadow_origin.xyz, path->shadow_span.xyz, 1.0f); }
 
 inline void pt_path_begin(PtPath* path, __global const PtRenderParams* params, uint pixel, uint sample) {
   uint x = pixel % params->width, y = pixel / params->width;
-  float jx = pt_random(params->seed, pixel, sample, 0, PT_DIM_CAMERA_X);
-  float jy = pt_random(params->seed, pixel, sample, 0, PT_DIM_CAMERA_Y);
+  float jx = pt_sample(params->sampler, params->seed, pixel, sample, PT_DIM_CAMERA_X);
+  float jy = pt_sample(params->sampler, params->seed, pixel, sample, PT_DIM_CAMERA_Y);
   float sx = 2.0f * ((float)x + jx) / (float)params->width - 1.0f;
   float sy = 1.0f - 2.0f * ((float)y + jy) / (float)params->height;
   float3 forward = vload3(0, params->cam_forward), right = vload3(0, params->cam_right);
@@ -103,26 +108,29 @@ inline float3 pt_texture_lookup(const PtSceneData* scene, int index, float2 uv) 
 }
 #endif
 
-/* Picks an emitter by its share of the emitted power: the first entry whose cdf exceeds u. */
-inline uint pt_pick_light(__global const PtLight* lights, uint count, float u) {
+/* Picks an emitter by its share of the emitted power: the first entry whose cdf exceeds u. *u
+ * becomes u's position inside that entry's cdf interval, a fresh uniform number in [0, 1) for
+ * sampling the picked light (stratified along with the pick). */
+inline uint pt_pick_light(__global const PtLight* lights, uint count, float* u) {
   uint lo = 0, hi = count - 1;
   while (lo < hi) {
     uint mid = (lo + hi) / 2;
-    if (u < lights[mid].cdf) hi = mid; else lo = mid + 1;
+    if (*u < lights[mid].cdf) hi = mid; else lo = mid + 1;
   }
+  float below = lo > 0 ? lights[lo - 1].cdf : 0.0f;
+  float width = lights[lo].cdf - below;
+  *u = width > 0.0f ? fmin((*u - below) / width, 0x1.fffffep-1f) : 0.0f;
   return lights[lo].triangle;
 }
 
 inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const PtRenderParams* params,
                           const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng, float3 wo) {
-  uint k = path->bounce;
-  float u_pick = pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_LIGHT_PICK);
-  uint tri = pt_pick_light(scene->lights, params->light_count, u_pick);
+  float u = pt_path_sample(path, params, PT_DIM_LIGHT_PICK);
+  uint tri = pt_pick_light(scene->lights, params->light_count, &u);
   float3 q0 = pt_corner(&scene->kd, tri, 0);
   float3 q1 = pt_corner(&scene->kd, tri, 1);
   float3 q2 = pt_corner(&scene->kd, tri, 2);
-  float2 b = pt_sample_triangle(pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_LIGHT_U),
-                                pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_LIGHT_V));
+  float2 b = pt_sample_triangle(u, pt_path_sample(path, params, PT_DIM_LIGHT_V));
   float3 y = q0 + b.x * (q1 - q0) + b.y * (q2 - q0);
   float3 light_normal = normalize(cross(q1 - q0, q2 - q0));
   float3 to_light = y - p;
@@ -207,7 +215,7 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
   }
   if (k >= PT_ROULETTE_START) {
     float survive = fmin(pt_max3(beta), 1.0f);
-    if (pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_ROULETTE) >= survive) {
+    if (pt_path_sample(path, params, PT_DIM_ROULETTE) >= survive) {
       path->alive = 0;
       return;
     }
@@ -218,8 +226,8 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
   if (params->light_count > 0 && !pt_is_delta(m.type)) pt_next_event(path, scene, params, &m, color, p, n, ng_facing, wo);
 #endif
   PtBsdfSample s = pt_bsdf_sample(&m, color, n, wo, front,
-                                  pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_BSDF_U),
-                                  pt_random(params->seed, path->pixel, path->sample, k, PT_DIM_BSDF_V));
+                                  pt_path_sample(path, params, PT_DIM_BSDF_U),
+                                  pt_path_sample(path, params, PT_DIM_BSDF_V));
   float side = dot(s.wi, ng_facing);
   if (pt_max3(s.weight) <= 0.0f || (s.transmits ? side >= 0.0f : side <= 0.0f)) {
     path->alive = 0;

@@ -1,21 +1,54 @@
-/* Counter-based random numbers: a value is a pure function of (seed, pixel, sample, dimension),
- * so an image does not depend on which work-item rendered which pixel, the local size, the
- * number of threads or the device. Compiles as OpenCL C and as C++. */
+/* The path tracer's sample values: counter-based, so a value is a pure function of (sampler,
+ * seed, pixel, sample index, dimension). An image therefore does not depend on which work-item
+ * rendered which pixel, the local size, the number of threads or the device, and sample ranges
+ * rendered apart merge to the bits of one render. Compiles as OpenCL C and as C++.
+ *
+ * Two samplers:
+ * - PT_SAMPLER_SOBOL (the default): Owen-scrambled, shuffled Sobol' points in padded 2D pairs
+ *   (Burley 2020, "Practical Hash-based Owen Scrambling", JCGT 9(4)). Each dimension pair takes
+ *   Sobol' dimensions 0 and 1 (a (0,2)-sequence) of a shuffled sample index and Owen-scrambles
+ *   both coordinates. The shuffle is itself a nested uniform scramble of the index, so a pixel's
+ *   samples 0..2^k-1 are a permuted aligned block of 2^k Sobol' points, and each pair of them is a
+ *   (0,k,2)-net: one point in every elementary interval of area 2^-k. Pixels and pairs draw
+ *   their own shuffle and scramble seeds, which decorrelates them (the "padding").
+ * - PT_SAMPLER_INDEPENDENT: hashed independent uniform numbers, as before the sampler choice.
+ *
+ * Dimension plan (dimension = 2 * pair + coordinate; a pair is stratified as a 2D point):
+ *   dimensions 0, 1                 pixel position (camera ray)
+ *   bounce k uses PT_DIMS_PER_BOUNCE dimensions from PT_BOUNCE_DIMS(k):
+ *     PT_DIM_LIGHT_PICK, PT_DIM_LIGHT_V   next-event estimation: the light pick, whose leftover
+ *                                         (its position inside the picked light's cdf interval)
+ *                                         is the first surface coordinate, and the second one
+ *     PT_DIM_BSDF_U, PT_DIM_BSDF_V        BSDF direction
+ *     PT_DIM_ROULETTE, PT_DIM_LOBE        Russian roulette; lobe choice of layered materials
+ *     PT_DIM_LIGHT_TYPE, PT_DIM_ALPHA     choice between light kinds (triangles, environment,
+ *                                         punctual); alpha (cut-out) test
+ *     PT_DIM_ENV_U, PT_DIM_ENV_V          environment light sample
+ *     pairs 5 to 7                        free for later techniques
+ * The pairs marked for layered materials, light kinds, alpha and the environment are reserved:
+ * nothing reads them yet. */
 #ifndef PT_RNG_H
 #define PT_RNG_H
 
 #include "kd_compat.h"
 
-/* Dimensions used per bounce; bounce b uses dimensions b*PT_DIMS_PER_BOUNCE + PT_DIM_*. */
-#define PT_DIMS_PER_BOUNCE 8u
+#define PT_SAMPLER_SOBOL 0u
+#define PT_SAMPLER_INDEPENDENT 1u
+
 #define PT_DIM_CAMERA_X 0u
 #define PT_DIM_CAMERA_Y 1u
-#define PT_DIM_LIGHT_PICK 2u
-#define PT_DIM_LIGHT_U 3u
-#define PT_DIM_LIGHT_V 4u
-#define PT_DIM_BSDF_U 5u
-#define PT_DIM_BSDF_V 6u
-#define PT_DIM_ROULETTE 7u
+#define PT_DIMS_PER_BOUNCE 16u
+#define PT_BOUNCE_DIMS(bounce) (2u + (bounce) * PT_DIMS_PER_BOUNCE)
+#define PT_DIM_LIGHT_PICK 0u
+#define PT_DIM_LIGHT_V 1u
+#define PT_DIM_BSDF_U 2u
+#define PT_DIM_BSDF_V 3u
+#define PT_DIM_ROULETTE 4u
+#define PT_DIM_LOBE 5u
+#define PT_DIM_LIGHT_TYPE 6u
+#define PT_DIM_ALPHA 7u
+#define PT_DIM_ENV_U 8u
+#define PT_DIM_ENV_V 9u
 
 /* A 32-bit integer hash with low bias (C. Wellons, "Prospecting for Hash Functions"). */
 KD_INLINE kd_u32 pt_hash32(kd_u32 x) {
@@ -34,10 +67,56 @@ KD_INLINE kd_u32 pt_random_bits(kd_u32 seed, kd_u32 pixel, kd_u32 sample, kd_u32
   return pt_hash32(h ^ dimension);
 }
 
+KD_INLINE kd_u32 pt_reverse_bits(kd_u32 x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+/* A hash in which bit i of the result depends only on bits 0..i of x and flips with bit i of x:
+ * applied to bit-reversed values it is an Owen scramble (each bit flipped by a function of the
+ * more significant bits). The Laine-Karras form with the constants Burley 2020 gives. */
+KD_INLINE kd_u32 pt_laine_karras(kd_u32 x, kd_u32 seed) {
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+}
+
+KD_INLINE kd_u32 pt_owen_scramble(kd_u32 x, kd_u32 seed) {
+  return pt_reverse_bits(pt_laine_karras(pt_reverse_bits(x), seed));
+}
+
+/* Sobol' dimension 1 (primitive polynomial x + 1): direction numbers v_0 = 2^31,
+ * v_j = v_{j-1} ^ (v_{j-1} >> 1). Dimension 0 is the bit reversal of the index. */
+KD_INLINE kd_u32 pt_sobol_dimension1(kd_u32 index) {
+  kd_u32 x = 0u, v = 0x80000000u;
+  for (; index != 0u; index >>= 1) {
+    if (index & 1u) x ^= v;
+    v ^= v >> 1;
+  }
+  return x;
+}
+
+KD_INLINE kd_u32 pt_sobol_bits(kd_u32 seed, kd_u32 pixel, kd_u32 index, kd_u32 dimension) {
+  kd_u32 pair_seed = pt_hash32(pt_hash32(pt_hash32(seed ^ 0x5851f42du) ^ pixel) ^ (dimension >> 1));
+  kd_u32 shuffled = pt_owen_scramble(index, pt_hash32(pair_seed ^ 0x68e31da4u));
+  kd_u32 coordinate = (dimension & 1u) ? pt_sobol_dimension1(shuffled) : pt_reverse_bits(shuffled);
+  return pt_owen_scramble(coordinate, pt_hash32(pair_seed ^ (0xb5297a4du + (dimension & 1u))));
+}
+
+KD_INLINE kd_u32 pt_sample_bits(kd_u32 sampler, kd_u32 seed, kd_u32 pixel, kd_u32 index, kd_u32 dimension) {
+  return sampler == PT_SAMPLER_INDEPENDENT ? pt_random_bits(seed, pixel, index, dimension)
+                                           : pt_sobol_bits(seed, pixel, index, dimension);
+}
+
 /* Uniform in [0, 1): the top 24 bits, exactly representable as float. */
-KD_INLINE float pt_random(kd_u32 seed, kd_u32 pixel, kd_u32 sample, kd_u32 bounce, kd_u32 dim) {
-  kd_u32 bits = pt_random_bits(seed, pixel, sample, bounce * PT_DIMS_PER_BOUNCE + dim);
-  return (float)(bits >> 8) * (1.0f / 16777216.0f);
+KD_INLINE float pt_sample(kd_u32 sampler, kd_u32 seed, kd_u32 pixel, kd_u32 index, kd_u32 dimension) {
+  return (float)(pt_sample_bits(sampler, seed, pixel, index, dimension) >> 8) * (1.0f / 16777216.0f);
 }
 
 #endif /* PT_RNG_H */

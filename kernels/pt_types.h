@@ -64,7 +64,8 @@ typedef struct PtRenderParams {
   float light_area_pdf_scale; /* 1 / sum(luminance(Le) * area): area pdf = luminance(Le) * scale */
   kd_u32 aov_mask;
   kd_u32 film_channels;
-  kd_u32 pad0, pad1;
+  kd_u32 sampler;       /* PT_SAMPLER_* (kernels/pt_rng.h) */
+  kd_u32 pad0;
 } PtRenderParams;
 KD_STATIC_ASSERT(sizeof(PtRenderParams) == 144, "PtRenderParams is 144 bytes");
 

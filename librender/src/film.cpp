@@ -29,12 +29,21 @@ double Film::mean_radiance() const {
   return pixel_count() ? total / (3.0 * pixel_count()) : 0.0;
 }
 
+const char* sampler_name(Sampler sampler) { return sampler == Sampler::Sobol ? "sobol" : "independent"; }
+
+std::optional<Sampler> parse_sampler(const std::string& name) {
+  if (name == "sobol") return Sampler::Sobol;
+  if (name == "independent") return Sampler::Independent;
+  return std::nullopt;
+}
+
 Film merge_films(const Film& a, const Film& b) {
   auto mismatch = [](const std::string& what) { return Error("", "cannot merge: the images differ in " + what); };
   if (a.width != b.width || a.height != b.height) throw mismatch("size");
   if (a.channels != b.channels) throw mismatch("channels (AOVs)");
   if (a.seed != b.seed) throw mismatch("seed");
   if (a.max_bounces != b.max_bounces) throw mismatch("max bounces");
+  if (a.sampler != b.sampler) throw mismatch("sampler");
   if (a.scene_hash != b.scene_hash || a.tree_hash != b.tree_hash) throw mismatch("scene or tree");
   const Film& first = a.sample_offset <= b.sample_offset ? a : b;
   const Film& second = &first == &a ? b : a;

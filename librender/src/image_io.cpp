@@ -84,6 +84,7 @@ void write_exr(const std::string& path, const Film& film) {
   spec.attribute("kdray:sample_offset", film.sample_offset);
   spec.attribute("kdray:seed", film.seed);
   spec.attribute("kdray:max_bounces", film.max_bounces);
+  spec.attribute("kdray:sampler", sampler_name(film.sampler));
   spec.attribute("kdray:seconds", float(film.render_seconds));
   spec.attribute("kdray:scene_hash", hex64(film.scene_hash));
   spec.attribute("kdray:tree_hash", hex64(film.tree_hash));
@@ -179,6 +180,11 @@ Film read_film_exr(const std::string& path) {
   film.sample_offset = uint32_t(spec.get_int_attribute("kdray:sample_offset"));
   film.seed = uint32_t(spec.get_int_attribute("kdray:seed"));
   film.max_bounces = uint32_t(spec.get_int_attribute("kdray:max_bounces"));
+  // Files written before the sampler choice used independent numbers.
+  const std::string sampler_text = spec.get_string_attribute("kdray:sampler", "independent");
+  std::optional<Sampler> sampler = parse_sampler(sampler_text);
+  if (!sampler) throw Error(path, "unknown kdray:sampler '" + sampler_text + "'");
+  film.sampler = *sampler;
   film.render_seconds = spec.get_float_attribute("kdray:seconds");
   film.scene_hash = parse_hex(path, spec.get_string_attribute("kdray:scene_hash"));
   film.tree_hash = parse_hex(path, spec.get_string_attribute("kdray:tree_hash"));

@@ -4,6 +4,8 @@
 
 #include <kdray/error.h>
 
+#include <kernels/pt_rng.h>
+
 #include <xxhash.h>
 
 #include <algorithm>
@@ -163,6 +165,9 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settin
   params.height = settings.height;
   params.seed = settings.seed;
   params.max_bounces = settings.max_bounces;
+  static_assert(uint32_t(Sampler::Sobol) == PT_SAMPLER_SOBOL && uint32_t(Sampler::Independent) == PT_SAMPLER_INDEPENDENT,
+                "Sampler numbers PT_SAMPLER_*");
+  params.sampler = static_cast<uint32_t>(settings.sampler);
   params.light_count = job.scene.light_count;
   params.light_area_pdf_scale = job.scene.light_area_pdf_scale;
   params.aov_mask = (settings.aov_albedo ? PT_AOV_ALBEDO : 0) | (settings.aov_normal ? PT_AOV_NORMAL : 0) |
@@ -231,6 +236,7 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settin
   film.sample_count = done;
   film.seed = settings.seed;
   film.max_bounces = settings.max_bounces;
+  film.sampler = settings.sampler;
   film.scene_hash = scene.content_hash;
   film.tree_hash = tree_content_hash(tree);
   film.render_seconds = stats.render_seconds;

@@ -1,10 +1,12 @@
 // The device-code headers compile as OpenCL C on PoCL, and the kernel's traversal returns the
-// same hits as the CPU build of the same headers.
+// same hits, and the sampler the same bits, as the CPU build of the same headers.
 #include "test_scenes.h"
 
 #include <kdray/kdtree.h>
 #include <kdray/ray_sets.h>
 #include <kdray/traverse.h>
+
+#include <kernels/pt_rng.h>
 
 #include <CL/cl.h>
 #include <gtest/gtest.h>
@@ -18,6 +20,7 @@ namespace {
 
 const char* kProgramSource = R"CL(
 #include "kd_traverse.h"
+#include "pt_rng.h"
 
 __kernel void report_features(__global int* out) {
   out[0] = KD_HAS_DOUBLE;
@@ -37,6 +40,13 @@ __kernel void trace_closest(__global const KdNode* nodes, __global const kd_u32*
   }
   size_t i = get_global_id(0);
   hits[i] = kd_intersect_closest(&scene, rays[i]);
+}
+
+/* keys: 5 values per query (sampler, seed, pixel, sample index, dimension). */
+__kernel void sample_bits(__global const kd_u32* keys, __global kd_u32* bits) {
+  size_t i = get_global_id(0);
+  __global const kd_u32* k = keys + 5 * i;
+  bits[i] = pt_sample_bits(k[0], k[1], k[2], k[3], k[4]);
 }
 )CL";
 
@@ -150,6 +160,32 @@ TEST(KdOpenCl, KernelTraversalMatchesCpuWithDepthOneStack) {
     }
   }
   EXPECT_GT(hit_count, rays.size() / 4);
+}
+
+TEST(KdOpenCl, SampleValuesMatchTheCpuBitForBit) {
+  OpenClDevice device;
+  if (!device.available()) GTEST_SKIP() << "no OpenCL device";
+  ASSERT_EQ(device.build(""), "");
+  std::vector<kd_u32> keys;
+  for (kd_u32 sampler : {PT_SAMPLER_SOBOL, PT_SAMPLER_INDEPENDENT}) {
+    for (kd_u32 seed : {0u, 12345u}) {
+      for (kd_u32 pixel : {0u, 1u, 65535u, 0xffffffffu}) {
+        for (kd_u32 index : {0u, 1u, 2u, 3u, 255u, 1000u, 0x7fffffffu, 0xffffffffu}) {
+          for (kd_u32 dimension : {0u, 1u, 2u, 3u, 17u, 150u, 4000u}) keys.insert(keys.end(), {sampler, seed, pixel, index, dimension});
+        }
+      }
+    }
+  }
+  const size_t count = keys.size() / 5;
+  std::vector<kd_u32> kernel(count, 0);
+  cl_mem out = device.buffer(kernel.data(), kernel.size() * 4);
+  device.run("sample_bits", {device.buffer(keys.data(), keys.size() * 4), out}, count, out, kernel.data(),
+             kernel.size() * 4);
+  for (size_t i = 0; i < count; ++i) {
+    const kd_u32* k = &keys[5 * i];
+    ASSERT_EQ(kernel[i], pt_sample_bits(k[0], k[1], k[2], k[3], k[4]))
+        << "sampler " << k[0] << " seed " << k[1] << " pixel " << k[2] << " index " << k[3] << " dimension " << k[4];
+  }
 }
 
 }  // namespace

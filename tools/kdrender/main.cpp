@@ -47,6 +47,7 @@ struct Options {
   std::string scene_path, tree_path, output;
   std::vector<std::string> merge_inputs;
   std::string aovs;
+  std::string sampler = kdray::sampler_name(kdray::Sampler::Sobol);
   std::string cam_pos, cam_target, cam_up;
   float fov = 0;
   bool wavefront = false, json = false, quiet = false;
@@ -74,6 +75,11 @@ void add_options(CLI::App& app, Options& o) {
       ->capture_default_str()
       ->group("Sampling");
   app.add_option("--seed", s.seed, "Random seed")->capture_default_str()->group("Sampling");
+  app.add_option("--sampler", o.sampler,
+                 "sobol (Owen-scrambled Sobol', stratified) or independent (hashed random numbers)")
+      ->check(CLI::IsMember({"sobol", "independent"}))
+      ->capture_default_str()
+      ->group("Sampling");
   app.add_option("--max-bounces", s.max_bounces, "Maximum bounces, as Cycles counts them (0: direct light only)")
       ->check(CLI::Range(0u, kdray::RenderSettings::kMaxBouncesLimit))
       ->capture_default_str()
@@ -199,6 +205,7 @@ int render(Options& o) {
                              {"sample_offset", film.sample_offset},
                              {"seed", film.seed},
                              {"max_bounces", film.max_bounces},
+                             {"sampler", kdray::sampler_name(film.sampler)},
                              {"kernel_options", stats.kernel_options},
                              {"load_seconds", load_seconds},
                              {"build_seconds", stats.build_seconds},
@@ -212,9 +219,10 @@ int render(Options& o) {
                              {"mean_radiance", film.mean_radiance()},
                              {"nonfinite_values", stats.nonfinite_values}});
   } else if (!o.quiet) {
-    std::printf("%s: %ux%u, %u spp (samples %u..%u), %u max bounces, seed %u\n", o.output.c_str(), film.width,
-                film.height, film.sample_count, film.sample_offset, film.sample_offset + film.sample_count - 1,
-                film.max_bounces, film.seed);
+    std::printf("%s: %ux%u, %u spp (samples %u..%u), %u max bounces, %s sampler, seed %u\n", o.output.c_str(),
+                film.width, film.height, film.sample_count, film.sample_offset,
+                film.sample_offset + film.sample_count - 1, film.max_bounces, kdray::sampler_name(film.sampler),
+                film.seed);
     std::printf("device %s; kernel %s (%s, %.2f s)\n", stats.device.c_str(), stats.kernel_options.c_str(),
                 stats.build_source.c_str(), stats.build_seconds);
     std::printf("load %.3f s, render %.3f s: %.2f M samples/s, %.2f M rays/s\n", load_seconds, stats.render_seconds,
@@ -252,6 +260,7 @@ int main(int argc, char** argv) {
       }
       apply_camera_options(o);
       if (o.wavefront) o.settings.form = kdray::RenderForm::Wavefront;
+      o.settings.sampler = *kdray::parse_sampler(o.sampler);
       return render(o);
     } catch (const UsageError& error) {
       kdray::tool::print_error("kdrender", std::string(error.what()) + " (see --help)");

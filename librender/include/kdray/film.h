@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,12 +18,21 @@ namespace kdray {
 
 constexpr int kFilmFixedBits = 20;
 
+// Where sample values come from (kernels/pt_rng.h; the numbering of PT_SAMPLER_*).
+enum class Sampler : uint32_t {
+  Sobol = 0,        // Owen-scrambled, shuffled Sobol' points in padded 2D pairs (the default)
+  Independent = 1,  // hashed independent uniform numbers
+};
+const char* sampler_name(Sampler sampler);  // "sobol", "independent"
+std::optional<Sampler> parse_sampler(const std::string& name);
+
 struct Film {
   uint32_t width = 0, height = 0;
   std::vector<std::string> channels;  // "R","G","B", then AOVs: "albedo.R/G/B", "N.X/Y/Z", "Z"
   std::vector<int64_t> sums;          // pixel-major: (y * width + x) * channels.size() + channel
   uint32_t sample_offset = 0, sample_count = 0;
   uint32_t seed = 0, max_bounces = 0;
+  Sampler sampler = Sampler::Sobol;
   uint64_t scene_hash = 0, tree_hash = 0;
   double render_seconds = 0;  // summed over merged ranges
 
@@ -33,8 +43,8 @@ struct Film {
   double mean_radiance() const;
 };
 
-// The film of samples min(offsets)..: a and b must have the same size, channels, seed, bounces
-// and hashes, and adjacent sample ranges (in either order). Throws kdray::Error otherwise.
+// The film of samples min(offsets)..: a and b must have the same size, channels, seed, bounces,
+// sampler and hashes, and adjacent sample ranges (in either order). Throws kdray::Error otherwise.
 Film merge_films(const Film& a, const Film& b);
 
 }  // namespace kdray

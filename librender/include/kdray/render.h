@@ -30,6 +30,7 @@ struct RenderSettings {
   uint32_t sample_offset = 0;     // renders samples sample_offset..sample_offset+spp-1
   uint32_t seed = 0;
   uint32_t max_bounces = kDefaultMaxBounces;  // as Cycles counts: 0 is direct light only
+  Sampler sampler = Sampler::Sobol;
   std::optional<Camera> camera;   // default: the scene's first camera
   bool aov_albedo = false, aov_normal = false, aov_depth = false;
   double time_limit_seconds = 0;  // > 0: stop after the last whole pass within the limit

@@ -91,22 +91,28 @@ KD_INLINE kd_u32 pt_owen_scramble(kd_u32 x, kd_u32 seed) {
   return pt_reverse_bits(pt_laine_karras(pt_reverse_bits(x), seed));
 }
 
-/* Sobol' dimension 1 (primitive polynomial x + 1): direction numbers v_0 = 2^31,
- * v_j = v_{j-1} ^ (v_{j-1} >> 1). Dimension 0 is the bit reversal of the index. */
-KD_INLINE kd_u32 pt_sobol_dimension1(kd_u32 index) {
-  kd_u32 x = 0u, v = 0x80000000u;
-  for (; index != 0u; index >>= 1) {
-    if (index & 1u) x ^= v;
-    v ^= v >> 1;
-  }
-  return x;
+/* Sobol' dimensions 0 and 1 with the bits of the result reversed (bit k holds the coefficient of
+ * 2^-(k+1)), the form the Owen scramble takes. Dimension 0 is the index itself. Dimension 1
+ * (primitive polynomial x + 1) has the direction numbers of Pascal's triangle mod 2: result bit k
+ * is the XOR of index bits j with C(j, k) odd, i.e. (Lucas) with k a bit-subset of j. That
+ * superset XOR over the five bits of a position takes five shift-and-mask steps instead of a loop
+ * over the index bits. */
+KD_INLINE kd_u32 pt_sobol_reversed(kd_u32 index, kd_u32 dimension) {
+  if (dimension == 0u) return index;
+  index ^= (index >> 1) & 0x55555555u;
+  index ^= (index >> 2) & 0x33333333u;
+  index ^= (index >> 4) & 0x0f0f0f0fu;
+  index ^= (index >> 8) & 0x00ff00ffu;
+  index ^= (index >> 16) & 0x0000ffffu;
+  return index;
 }
 
 KD_INLINE kd_u32 pt_sobol_bits(kd_u32 seed, kd_u32 pixel, kd_u32 index, kd_u32 dimension) {
   kd_u32 pair_seed = pt_hash32(pt_hash32(pt_hash32(seed ^ 0x5851f42du) ^ pixel) ^ (dimension >> 1));
   kd_u32 shuffled = pt_owen_scramble(index, pt_hash32(pair_seed ^ 0x68e31da4u));
-  kd_u32 coordinate = (dimension & 1u) ? pt_sobol_dimension1(shuffled) : pt_reverse_bits(shuffled);
-  return pt_owen_scramble(coordinate, pt_hash32(pair_seed ^ (0xb5297a4du + (dimension & 1u))));
+  /* pt_owen_scramble of the Sobol' value, whose first bit reversal undoes pt_sobol_reversed's. */
+  kd_u32 coordinate = pt_sobol_reversed(shuffled, dimension & 1u);
+  return pt_reverse_bits(pt_laine_karras(coordinate, pt_hash32(pair_seed ^ (0xb5297a4du + (dimension & 1u)))));
 }
 
 KD_INLINE kd_u32 pt_sample_bits(kd_u32 sampler, kd_u32 seed, kd_u32 pixel, kd_u32 index, kd_u32 dimension) {

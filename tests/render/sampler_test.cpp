@@ -47,6 +47,17 @@ namespace {
   return ::testing::AssertionSuccess();
 }
 
+TEST(SobolSampler, DimensionOneMatchesItsDirectionNumbers) {
+  // Direction numbers v_0 = 2^31, v_j = v_(j-1) ^ (v_(j-1) >> 1), applied bit by bit.
+  for (uint32_t i = 0; i < 100000; ++i) {
+    const uint32_t index = i < 50000 ? i : pt_hash32(i);
+    uint32_t expected = 0, v = 0x80000000u;
+    for (uint32_t bits = index; bits != 0; bits >>= 1, v ^= v >> 1) expected ^= (bits & 1u) ? v : 0u;
+    ASSERT_EQ(pt_reverse_bits(pt_sobol_reversed(index, 1)), expected) << "index " << index;
+    ASSERT_EQ(pt_sobol_reversed(index, 0), index);
+  }
+}
+
 TEST(SobolSampler, PairsAreStratifiedInEveryElementaryIntervalUpTo1024Samples) {
   const uint32_t pairs[] = {PT_DIM_CAMERA_X, PT_BOUNCE_DIMS(0) + PT_DIM_LIGHT_PICK, PT_BOUNCE_DIMS(0) + PT_DIM_BSDF_U,
                             PT_BOUNCE_DIMS(3) + PT_DIM_ROULETTE, PT_BOUNCE_DIMS(7) + PT_DIM_BSDF_U};

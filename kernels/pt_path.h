@@ -58,9 +58,17 @@ inline RayRecord pt_ray(float3 origin, float3 direction, float tmax) {
   ray.tmax = tmax;
   return ray;
 }
-/* Sample value `dim` (PT_DIM_*, kernels/pt_rng.h) of the path's current bounce. */
+/* Sample value `dim` (PT_DIM_*, kernels/pt_rng.h) of the path's current bounce, or both values
+ * of the pair starting at even `dim`. */
 inline float pt_path_sample(const PtPath* path, __global const PtRenderParams* params, uint dim) {
   return pt_sample(params->sampler, params->seed, path->pixel, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim);
+}
+inline float2 pt_sample2(__global const PtRenderParams* params, uint pixel, uint sample, uint dimension) {
+  PtBits2 bits = pt_sample_bits2(params->sampler, params->seed, pixel, sample, dimension);
+  return (float2)(pt_bits_to_unit(bits.x), pt_bits_to_unit(bits.y));
+}
+inline float2 pt_path_sample2(const PtPath* path, __global const PtRenderParams* params, uint dim) {
+  return pt_sample2(params, path->pixel, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim);
 }
 
 inline RayRecord pt_path_ray(const PtPath* path) { return pt_ray(path->origin.xyz, path->direction.xyz, INFINITY); }
@@ -68,10 +76,9 @@ inline RayRecord pt_shadow_ray(const PtPath* path) { return pt_ray(path->shadow_
 
 inline void pt_path_begin(PtPath* path, __global const PtRenderParams* params, uint pixel, uint sample) {
   uint x = pixel % params->width, y = pixel / params->width;
-  float jx = pt_sample(params->sampler, params->seed, pixel, sample, PT_DIM_CAMERA_X);
-  float jy = pt_sample(params->sampler, params->seed, pixel, sample, PT_DIM_CAMERA_Y);
-  float sx = 2.0f * ((float)x + jx) / (float)params->width - 1.0f;
-  float sy = 1.0f - 2.0f * ((float)y + jy) / (float)params->height;
+  float2 jitter = pt_sample2(params, pixel, sample, PT_DIM_CAMERA_X);
+  float sx = 2.0f * ((float)x + jitter.x) / (float)params->width - 1.0f;
+  float sy = 1.0f - 2.0f * ((float)y + jitter.y) / (float)params->height;
   float3 forward = vload3(0, params->cam_forward), right = vload3(0, params->cam_right);
   float3 up = vload3(0, params->cam_up);
   path->origin = (float4)(vload3(0, params->cam_origin), 0.0f);
@@ -128,12 +135,13 @@ inline uint pt_pick_light(__global const PtLight* lights, uint count, float* u) 
 
 inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const PtRenderParams* params,
                           const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng, float3 wo) {
-  float u = pt_path_sample(path, params, PT_DIM_LIGHT_PICK);
+  float2 pick_v = pt_path_sample2(path, params, PT_DIM_LIGHT_PICK);
+  float u = pick_v.x;
   uint tri = pt_pick_light(scene->lights, params->light_count, &u);
   float3 q0 = pt_corner(&scene->kd, tri, 0);
   float3 q1 = pt_corner(&scene->kd, tri, 1);
   float3 q2 = pt_corner(&scene->kd, tri, 2);
-  float2 b = pt_sample_triangle(u, pt_path_sample(path, params, PT_DIM_LIGHT_V));
+  float2 b = pt_sample_triangle(u, pick_v.y);
   float3 y = q0 + b.x * (q1 - q0) + b.y * (q2 - q0);
   float3 light_normal = normalize(cross(q1 - q0, q2 - q0));
   float3 to_light = y - p;
@@ -228,9 +236,8 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
 #ifdef KD_FEATURE_EMISSION
   if (params->light_count > 0 && !pt_is_delta(m.type)) pt_next_event(path, scene, params, &m, color, p, n, ng_facing, wo);
 #endif
-  PtBsdfSample s = pt_bsdf_sample(&m, color, n, wo, front,
-                                  pt_path_sample(path, params, PT_DIM_BSDF_U),
-                                  pt_path_sample(path, params, PT_DIM_BSDF_V));
+  float2 u = pt_path_sample2(path, params, PT_DIM_BSDF_U);
+  PtBsdfSample s = pt_bsdf_sample(&m, color, n, wo, front, u.x, u.y);
   float side = dot(s.wi, ng_facing);
   if (pt_max3(s.weight) <= 0.0f || (s.transmits ? side >= 0.0f : side <= 0.0f)) {
     path->alive = 0;

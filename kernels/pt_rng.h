@@ -107,22 +107,48 @@ KD_INLINE kd_u32 pt_sobol_reversed(kd_u32 index, kd_u32 dimension) {
   return index;
 }
 
-KD_INLINE kd_u32 pt_sobol_bits(kd_u32 seed, kd_u32 pixel, kd_u32 index, kd_u32 dimension) {
-  kd_u32 pair_seed = pt_hash32(pt_hash32(pt_hash32(seed ^ 0x5851f42du) ^ pixel) ^ (dimension >> 1));
-  kd_u32 shuffled = pt_owen_scramble(index, pt_hash32(pair_seed ^ 0x68e31da4u));
-  /* pt_owen_scramble of the Sobol' value, whose first bit reversal undoes pt_sobol_reversed's. */
-  kd_u32 coordinate = pt_sobol_reversed(shuffled, dimension & 1u);
-  return pt_reverse_bits(pt_laine_karras(coordinate, pt_hash32(pair_seed ^ (0xb5297a4du + (dimension & 1u)))));
+/* The seeds of one dimension pair of one pixel: the index shuffle and the two coordinates' scrambles. */
+KD_INLINE kd_u32 pt_pair_seed(kd_u32 seed, kd_u32 pixel, kd_u32 pair) {
+  return pt_hash32(pt_hash32(pt_hash32(seed ^ 0x5851f42du) ^ pixel) ^ pair);
+}
+KD_INLINE kd_u32 pt_shuffled_index(kd_u32 pair_seed, kd_u32 index) {
+  return pt_owen_scramble(index, pt_hash32(pair_seed ^ 0x68e31da4u));
+}
+/* pt_owen_scramble of Sobol' coordinate c, whose first bit reversal undoes pt_sobol_reversed's. */
+KD_INLINE kd_u32 pt_scrambled_sobol(kd_u32 pair_seed, kd_u32 shuffled, kd_u32 c) {
+  return pt_reverse_bits(pt_laine_karras(pt_sobol_reversed(shuffled, c), pt_hash32(pair_seed ^ (0xb5297a4du + c))));
 }
 
 KD_INLINE kd_u32 pt_sample_bits(kd_u32 sampler, kd_u32 seed, kd_u32 pixel, kd_u32 index, kd_u32 dimension) {
-  return sampler == PT_SAMPLER_INDEPENDENT ? pt_random_bits(seed, pixel, index, dimension)
-                                           : pt_sobol_bits(seed, pixel, index, dimension);
+  if (sampler == PT_SAMPLER_INDEPENDENT) return pt_random_bits(seed, pixel, index, dimension);
+  kd_u32 pair_seed = pt_pair_seed(seed, pixel, dimension >> 1);
+  return pt_scrambled_sobol(pair_seed, pt_shuffled_index(pair_seed, index), dimension & 1u);
+}
+
+/* Both dimensions of the pair starting at even `dimension`, the bits pt_sample_bits gives, sharing
+ * the seeds and the shuffle. */
+typedef struct PtBits2 {
+  kd_u32 x, y;
+} PtBits2;
+KD_INLINE PtBits2 pt_sample_bits2(kd_u32 sampler, kd_u32 seed, kd_u32 pixel, kd_u32 index, kd_u32 dimension) {
+  PtBits2 bits;
+  if (sampler == PT_SAMPLER_INDEPENDENT) {
+    bits.x = pt_random_bits(seed, pixel, index, dimension);
+    bits.y = pt_random_bits(seed, pixel, index, dimension + 1u);
+    return bits;
+  }
+  kd_u32 pair_seed = pt_pair_seed(seed, pixel, dimension >> 1);
+  kd_u32 shuffled = pt_shuffled_index(pair_seed, index);
+  bits.x = pt_scrambled_sobol(pair_seed, shuffled, 0u);
+  bits.y = pt_scrambled_sobol(pair_seed, shuffled, 1u);
+  return bits;
 }
 
 /* Uniform in [0, 1): the top 24 bits, exactly representable as float. */
+KD_INLINE float pt_bits_to_unit(kd_u32 bits) { return (float)(bits >> 8) * (1.0f / 16777216.0f); }
+
 KD_INLINE float pt_sample(kd_u32 sampler, kd_u32 seed, kd_u32 pixel, kd_u32 index, kd_u32 dimension) {
-  return (float)(pt_sample_bits(sampler, seed, pixel, index, dimension) >> 8) * (1.0f / 16777216.0f);
+  return pt_bits_to_unit(pt_sample_bits(sampler, seed, pixel, index, dimension));
 }
 
 #endif /* PT_RNG_H */

@@ -42,11 +42,15 @@ __kernel void trace_closest(__global const KdNode* nodes, __global const kd_u32*
   hits[i] = kd_intersect_closest(&scene, rays[i]);
 }
 
-/* keys: 5 values per query (sampler, seed, pixel, sample index, dimension). */
+/* keys: 5 values per query (sampler, seed, pixel, sample index, dimension); bits: 3 per query,
+ * the value and both values of the dimension's pair. */
 __kernel void sample_bits(__global const kd_u32* keys, __global kd_u32* bits) {
   size_t i = get_global_id(0);
   __global const kd_u32* k = keys + 5 * i;
-  bits[i] = pt_sample_bits(k[0], k[1], k[2], k[3], k[4]);
+  PtBits2 pair = pt_sample_bits2(k[0], k[1], k[2], k[3], k[4] & ~1u);
+  bits[3 * i] = pt_sample_bits(k[0], k[1], k[2], k[3], k[4]);
+  bits[3 * i + 1] = pair.x;
+  bits[3 * i + 2] = pair.y;
 }
 )CL";
 
@@ -177,14 +181,18 @@ TEST(KdOpenCl, SampleValuesMatchTheCpuBitForBit) {
     }
   }
   const size_t count = keys.size() / 5;
-  std::vector<kd_u32> kernel(count, 0);
+  std::vector<kd_u32> kernel(3 * count, 0);
   cl_mem out = device.buffer(kernel.data(), kernel.size() * 4);
   device.run("sample_bits", {device.buffer(keys.data(), keys.size() * 4), out}, count, out, kernel.data(),
              kernel.size() * 4);
   for (size_t i = 0; i < count; ++i) {
     const kd_u32* k = &keys[5 * i];
-    ASSERT_EQ(kernel[i], pt_sample_bits(k[0], k[1], k[2], k[3], k[4]))
+    const kd_u32 pair = k[4] & ~1u;
+    ASSERT_EQ(kernel[3 * i], pt_sample_bits(k[0], k[1], k[2], k[3], k[4]))
         << "sampler " << k[0] << " seed " << k[1] << " pixel " << k[2] << " index " << k[3] << " dimension " << k[4];
+    // The pair form gives the same bits as two single values.
+    ASSERT_EQ(kernel[3 * i + 1], pt_sample_bits(k[0], k[1], k[2], k[3], pair)) << "query " << i;
+    ASSERT_EQ(kernel[3 * i + 2], pt_sample_bits(k[0], k[1], k[2], k[3], pair + 1)) << "query " << i;
   }
 }
 

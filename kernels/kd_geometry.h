@@ -122,11 +122,12 @@ KD_INLINE int kd_ray_box(const KdRay* ray, const float bmin[3], const float bmax
   return lo <= hi;
 }
 
-/* Watertight ray/triangle test. Returns 1 when the ray hits the triangle (a, b, c) with
- * ray->tmin < t < t_max and writes t and the barycentrics u (of b) and v (of c). Triangles
- * seen edge-on (determinant 0) are missed from both sides. */
-KD_INLINE int kd_ray_triangle(const KdRay* ray, const float a[3], const float b[3], const float c[3],
-                              float t_max, float* t_out, float* u_out, float* v_out) {
+/* Watertight ray/triangle test against the whole line of the ray. Returns 1 when the line
+ * passes through the triangle (a, b, c) and writes its t and the barycentrics u (of b) and
+ * v (of c); the caller decides which t it accepts. Triangles seen edge-on (determinant 0) are
+ * missed from both sides. */
+KD_INLINE int kd_ray_triangle_line(const KdRay* ray, const float a[3], const float b[3], const float c[3],
+                                   float* t_out, float* u_out, float* v_out) {
   const int kx = ray->kx, ky = ray->ky, kz = ray->kz;
   const float A[3] = {a[0] - ray->org[0], a[1] - ray->org[1], a[2] - ray->org[2]};
   const float B[3] = {b[0] - ray->org[0], b[1] - ray->org[1], b[2] - ray->org[2]};
@@ -155,11 +156,20 @@ KD_INLINE int kd_ray_triangle(const KdRay* ray, const float a[3], const float b[
   const float cz = ray->sz * C[kz];
   const float T = U * az + V * bz + W * cz;
   const float inv_det = 1.0f / det;
-  const float t = T * inv_det;
-  if (!(t > ray->tmin && t < t_max)) return 0;
-  *t_out = t;
+  *t_out = T * inv_det;
   *u_out = V * inv_det;
   *v_out = W * inv_det;
+  return 1;
+}
+
+/* The same test for ray->tmin < t < t_max. */
+KD_INLINE int kd_ray_triangle(const KdRay* ray, const float a[3], const float b[3], const float c[3],
+                              float t_max, float* t_out, float* u_out, float* v_out) {
+  float t, u, v;
+  if (!kd_ray_triangle_line(ray, a, b, c, &t, &u, &v) || !(t > ray->tmin && t < t_max)) return 0;
+  *t_out = t;
+  *u_out = u;
+  *v_out = v;
   return 1;
 }
 

@@ -9,7 +9,9 @@
  *   } KdSceneView;
  *
  *   HitRecord kd_intersect_closest(const KdSceneView* scene, RayRecord ray);
- *       closest hit with tmin < t < tmax (t=+inf, triangle=KD_NO_HIT on a miss)
+ *       closest hit with tmin < t < tmax (t=+inf, triangle=KD_NO_HIT on a miss); of two
+ *       triangles hit at the same t, the smaller index, so the hit does not depend on the
+ *       tree's shape or the order of its nodes
  *   int kd_intersect_any(const KdSceneView* scene, RayRecord ray);
  *       1 if any triangle is hit with tmin < t < tmax (shadow rays)
  *
@@ -21,8 +23,12 @@
  * t_split < t_min: far only; otherwise the far child goes on the stack with [t_split, t_max]
  * and the near one is visited with [t_min, t_split]. A hit found in a leaf is final once no
  * pending segment starts before it (for ordered segments: the seed's "t <= the leaf's t_max").
+ * One visit step (kd_visit_inner) decides the children of an inner node for the ordered
+ * traversal and for the point visits below.
  *
  * Where this code departs from the letter of the seed, and why:
+ * - Ties in t go to the smaller triangle index, so a pending segment that starts at (or within
+ *   KD_T_EPSILON of) the best t is still visited: it may hold such a tie.
  * - The comparisons of t_split with t_min and t_max allow KD_T_EPSILON (relative), so a ray
  *   that meets a triangle exactly on a split plane visits the voxels on both sides even when
  *   t_split and the voxel's t interval round differently (a flat voxel's interval is a point).
@@ -63,11 +69,25 @@
  * reference a triangle (a leaf-ordered copy would be ~5x larger, and measured slower). */
 #define KD_TRIANGLE_FLOATS 9u
 
+/* Work counters of one traversal (kdtrace --json, bench/): compiled in only where
+ * KD_TRAVERSAL_COUNTERS is defined (a CPU build of its own), so the timed code has none. */
+#ifdef KD_TRAVERSAL_COUNTERS
+typedef struct KdTraversalCounters {
+  unsigned long long inner_steps, leaves, triangle_tests;
+} KdTraversalCounters;
+#define KD_COUNT(scene, field, n) ((scene)->counters->field += (n))
+#else
+#define KD_COUNT(scene, field, n) ((void)0)
+#endif
+
 typedef struct KdSceneView {
   KD_GLOBAL const KdNode* nodes;
   KD_GLOBAL const kd_u32* leaf_triangles;
   KD_GLOBAL const float* triangle_vertices;
   float bounds_min[3], bounds_max[3];
+#ifdef KD_TRAVERSAL_COUNTERS
+  KdTraversalCounters* counters;
+#endif
 } KdSceneView;
 
 typedef struct KdStackEntry {
@@ -81,12 +101,22 @@ KD_INLINE void kd_load_corner(KD_GLOBAL const float* triangle, kd_u32 corner, fl
   out[2] = triangle[3u * corner + 2u];
 }
 
-/* Tests the leaf's triangles against (ray.tmin, hit->t); returns 1 if hit->t got smaller. */
+/* A hit at t by `triangle` replaces `best` when it is closer, or as close and of a smaller
+ * triangle index: the closest hit is then the smallest (t, triangle) pair, whatever order the
+ * leaves are visited in and whichever leaf holds which triangle. best->t starts as the ray's
+ * tmax with no triangle, and that end of the interval stays open. */
+KD_INLINE int kd_hit_precedes(float t, kd_u32 triangle, const HitRecord* best) {
+  return t < best->t || (t == best->t && triangle < best->triangle && best->triangle != KD_NO_HIT);
+}
+
+/* Tests the leaf's triangles against the ray and `hit`; returns 1 if hit changed. */
 KD_INLINE int kd_intersect_leaf(const KdSceneView* scene, const KdRay* ray, KdNode leaf, HitRecord* hit,
                                 int any_hit) {
   int found = 0;
   const kd_u32 first = kd_leaf_first(leaf);
   const kd_u32 count = kd_leaf_count(leaf);
+  KD_COUNT(scene, leaves, 1);
+  KD_COUNT(scene, triangle_tests, count);
   for (kd_u32 i = 0; i < count; ++i) {
     const kd_u32 triangle = scene->leaf_triangles[first + i];
     KD_GLOBAL const float* corners = scene->triangle_vertices + KD_TRIANGLE_FLOATS * triangle;
@@ -95,7 +125,7 @@ KD_INLINE int kd_intersect_leaf(const KdSceneView* scene, const KdRay* ray, KdNo
     kd_load_corner(corners, 1u, b);
     kd_load_corner(corners, 2u, c);
     float t, u, v;
-    if (kd_ray_triangle(ray, a, b, c, hit->t, &t, &u, &v)) {
+    if (kd_ray_triangle_line(ray, a, b, c, &t, &u, &v) && t > ray->tmin && kd_hit_precedes(t, triangle, hit)) {
       hit->t = t;
       hit->triangle = triangle;
       hit->u = u;
@@ -110,11 +140,55 @@ KD_INLINE int kd_intersect_leaf(const KdSceneView* scene, const KdRay* ray, KdNo
 /* Relative slack of the t comparisons in the descent (about 8 ulps). */
 #define KD_T_EPSILON 9.5367431640625e-07f
 
-/* Visits, in node order, every leaf whose voxel the ray touches at t = s (with the same
- * tolerance as the descent), without a stack: each descent from the root takes the first
- * child, in node order, that touches s and holds a node >= `next`; `bound` is the first node
- * after the current subtree (0xFFFFFFFF: after the whole tree). Returns 1 when any_hit is set
- * and a hit was found. */
+/* Whether a pending segment starting at t_start may hold a hit that precedes `best`: one that
+ * starts at best->t may hold a tie of a smaller index, and the slack covers a triangle hit on
+ * the boundary of two voxels whose t and t_split round apart. t_start = +inf stands for no
+ * segment (best->t is +inf until a hit when the ray is unbounded). */
+KD_INLINE int kd_segment_may_precede(float t_start, const HitRecord* best) {
+  return t_start <= best->t * (1.0f + KD_T_EPSILON) && t_start < INFINITY;
+}
+
+#define KD_VISIT_NEAR 1
+#define KD_VISIT_FAR 2
+
+/* The visit step of an inner node, the one used by the ordered traversal and by the point
+ * visits: which children the part [t_min, t_max] of the ray touches (KD_VISIT_NEAR,
+ * KD_VISIT_FAR or both), the near child (it holds the origin, or, with the origin on the
+ * plane, the side the ray moves into: below when d_k <= 0), the far child and t_split.
+ * Splits at or before far_from count as far only (-INFINITY: none does). A ray lying in the
+ * split plane touches above when its axis is set in plane_sides, below otherwise, as the near
+ * child only, and the axis is added to *in_plane_axes. */
+KD_INLINE int kd_visit_inner(const KdRay* ray, KdNode node, kd_u32 node_index, float t_min, float t_max,
+                             float far_from, int plane_sides, int* in_plane_axes, kd_u32* near_child,
+                             kd_u32* far_child, float* t_split_out) {
+  const kd_u32 axis = kd_node_axis(node);
+  const float split = kd_node_split(node);
+  const float origin = ray->org[axis];
+  const kd_u32 below = node_index + 1u;
+  const kd_u32 above = kd_node_far_child(node);
+  if (ray->dir[axis] == 0.0f && origin == split) {
+    *in_plane_axes |= 1 << axis;
+    const int go_above = (plane_sides >> axis) & 1;
+    *near_child = go_above ? above : below;
+    *far_child = go_above ? below : above;
+    *t_split_out = t_min;
+    return KD_VISIT_NEAR;
+  }
+  const float t_split = (split - origin) * ray->inv_dir[axis];
+  const int below_first = origin < split || (origin == split && ray->dir[axis] <= 0.0f);
+  *near_child = below_first ? below : above;
+  *far_child = below_first ? above : below;
+  *t_split_out = t_split;
+  if (t_split > t_max * (1.0f + KD_T_EPSILON) || t_split <= 0.0f) return KD_VISIT_NEAR;
+  if (t_split < t_min * (1.0f - KD_T_EPSILON) || t_split <= far_from) return KD_VISIT_FAR;
+  return KD_VISIT_NEAR | KD_VISIT_FAR;
+}
+
+/* Visits, in node order, every leaf whose voxel the ray touches at t = s (the visit step with
+ * the interval [s, s]), without a stack: each descent from the root takes the first child, in
+ * node order, that touches s and holds a node >= `next`; `bound` is the first node after the
+ * current subtree (0xFFFFFFFF: after the whole tree). Returns 1 when any_hit is set and a hit
+ * was found. */
 KD_INLINE int kd_visit_point(const KdSceneView* scene, const KdRay* ray, float s, int plane_sides,
                              int* in_plane_axes, HitRecord* best, int any_hit) {
   const kd_u32 after_tree = 0xFFFFFFFFu;
@@ -125,24 +199,15 @@ KD_INLINE int kd_visit_point(const KdSceneView* scene, const KdRay* ray, float s
     KdNode node = scene->nodes[0];
     int dead_end = 0;
     while (!kd_node_is_leaf(node)) {
-      const kd_u32 axis = kd_node_axis(node);
-      const float split = kd_node_split(node);
-      const float origin = ray->org[axis];
+      KD_COUNT(scene, inner_steps, 1);
+      kd_u32 near_child, far_child;
+      float t_split;
+      const int visit = kd_visit_inner(ray, node, node_index, s, s, -INFINITY, plane_sides, in_plane_axes,
+                                       &near_child, &far_child, &t_split);
       const kd_u32 below = node_index + 1u;
       const kd_u32 above = kd_node_far_child(node);
-      int touches_below, touches_above;
-      if (ray->dir[axis] == 0.0f && origin == split) {
-        *in_plane_axes |= 1 << axis;
-        touches_above = (plane_sides >> axis) & 1;
-        touches_below = !touches_above;
-      } else {
-        const float t_split = (split - origin) * ray->inv_dir[axis];
-        const int below_first = origin < split || (origin == split && ray->dir[axis] <= 0.0f);
-        const int near_only = t_split > s * (1.0f + KD_T_EPSILON) || t_split <= 0.0f;
-        const int far_only = !near_only && t_split < s * (1.0f - KD_T_EPSILON);
-        touches_below = below_first ? !far_only : !near_only;
-        touches_above = below_first ? !near_only : !far_only;
-      }
+      const int touches_below = (visit & (near_child == below ? KD_VISIT_NEAR : KD_VISIT_FAR)) != 0;
+      const int touches_above = (visit & (near_child == below ? KD_VISIT_FAR : KD_VISIT_NEAR)) != 0;
       if (touches_below && next < above) {
         bound = above;
         node_index = below;
@@ -165,6 +230,15 @@ KD_INLINE int kd_visit_point(const KdSceneView* scene, const KdRay* ray, float s
   return 0;
 }
 
+/* Hint that a node will be read soon: the far child of a split, read when the near side is
+ * done. PoCL's CPU devices compile __builtin_prefetch (OpenCL's prefetch() is a no-op there);
+ * the host defines KD_PREFETCH_NODES only for them. */
+#if !defined(__OPENCL_VERSION__) || defined(KD_PREFETCH_NODES)
+#define KD_PREFETCH_NODE(address) __builtin_prefetch(address)
+#else
+#define KD_PREFETCH_NODE(address) ((void)0)
+#endif
+
 /* One ordered traversal of [scene_t_min, scene_t_max]. At nodes whose split plane holds the
  * ray, it goes above on the axes set in plane_sides, below on the others, and adds the axis to
  * *in_plane_axes. Returns 1 when any_hit is set and a hit was found. */
@@ -177,7 +251,7 @@ KD_INLINE int kd_traverse_pass(const KdSceneView* scene, const KdRay* ray, float
   int stack_count = 0; /* valid entries below stack_top */
   float lost_t_min = INFINITY; /* earliest start of an overwritten entry in this round */
   float round_start = scene_t_min;
-  int strict = 0;
+  float far_from = -INFINITY; /* a strict round: round_start */
   kd_u32 node_index = 0;
   float t_min = scene_t_min;
   float t_max = scene_t_max;
@@ -185,26 +259,17 @@ KD_INLINE int kd_traverse_pass(const KdSceneView* scene, const KdRay* ray, float
   for (;;) {
     KdNode node = scene->nodes[node_index];
     while (!kd_node_is_leaf(node)) {
-      const kd_u32 axis = kd_node_axis(node);
-      const float split = kd_node_split(node);
-      const float origin = ray->org[axis];
-      const kd_u32 below = node_index + 1u;
-      const kd_u32 above = kd_node_far_child(node);
-      if (ray->dir[axis] == 0.0f && origin == split) {
-        *in_plane_axes |= 1 << axis;
-        node_index = (plane_sides >> axis) & 1 ? above : below;
-        node = scene->nodes[node_index];
-        continue;
-      }
-      const float t_split = (split - origin) * ray->inv_dir[axis];
-      const int below_first = origin < split || (origin == split && ray->dir[axis] <= 0.0f);
-      const kd_u32 near_child = below_first ? below : above;
-      const kd_u32 far_child = below_first ? above : below;
-      if (t_split > t_max * (1.0f + KD_T_EPSILON) || t_split <= 0.0f) {
+      KD_COUNT(scene, inner_steps, 1);
+      kd_u32 near_child, far_child;
+      float t_split;
+      const int visit = kd_visit_inner(ray, node, node_index, t_min, t_max, far_from, plane_sides, in_plane_axes,
+                                       &near_child, &far_child, &t_split);
+      if (visit == KD_VISIT_NEAR) {
         node_index = near_child;
-      } else if (t_split < t_min * (1.0f - KD_T_EPSILON) || (strict && t_split <= round_start)) {
+      } else if (visit == KD_VISIT_FAR) {
         node_index = far_child;
       } else {
+        KD_PREFETCH_NODE(scene->nodes + far_child);
         if (stack_count == KD_SHORT_STACK_SIZE)
           lost_t_min = kd_minf(lost_t_min, stack[stack_top].t_min);
         else
@@ -221,12 +286,12 @@ KD_INLINE int kd_traverse_pass(const KdSceneView* scene, const KdRay* ray, float
     }
     if (kd_intersect_leaf(scene, ray, node, best, any_hit) && any_hit) return 1;
 
-    /* Next segment: the newest pending one that could still hold a closer hit. */
+    /* Next segment: the newest pending one that could still hold a preceding hit. */
     int popped = 0;
     while (stack_count > 0) {
       stack_top = (stack_top + KD_SHORT_STACK_SIZE - 1) % KD_SHORT_STACK_SIZE;
       --stack_count;
-      if (stack[stack_top].t_min < best->t) {
+      if (kd_segment_may_precede(stack[stack_top].t_min, best)) {
         node_index = stack[stack_top].node;
         t_min = stack[stack_top].t_min;
         t_max = stack[stack_top].t_max;
@@ -235,12 +300,13 @@ KD_INLINE int kd_traverse_pass(const KdSceneView* scene, const KdRay* ray, float
       }
     }
     if (popped) continue;
-    /* Stack empty: done unless a lost segment could still hold a closer hit. */
-    if (!(lost_t_min < best->t)) return 0;
-    strict = !(lost_t_min > round_start);
+    /* Stack empty: done unless a lost segment could still hold a preceding hit. */
+    if (!kd_segment_may_precede(lost_t_min, best)) return 0;
+    const int strict = !(lost_t_min > round_start);
     if (strict &&
         kd_visit_point(scene, ray, round_start, plane_sides, in_plane_axes, best, any_hit))
       return 1;
+    far_from = strict ? round_start : -INFINITY;
     const float restart = kd_maxf(lost_t_min, round_start);
     round_start = restart;
     lost_t_min = INFINITY;

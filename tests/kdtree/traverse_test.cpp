@@ -169,6 +169,82 @@ TEST(KdTraverse, NonFiniteRaysMiss) {
     EXPECT_EQ(intersect_closest(scene, tree, ray).triangle, KD_NO_HIT);
 }
 
+KdNode inner_node(uint32_t axis, float split, uint32_t far_child) {
+  uint32_t bits;
+  std::memcpy(&bits, &split, sizeof bits);
+  return KdNode{bits, far_child << 2 | axis};
+}
+
+KdNode leaf_node(uint32_t first, uint32_t count) { return KdNode{first, count << 2 | KD_LEAF_TAG}; }
+
+// Two copies of one triangle in the plane z = 0 (indices 0 and 1), in trees written by hand so
+// that the larger index is met first: the smaller one must win all the same.
+TEST(KdTraverse, TiesInTGoToTheSmallerTriangleIndex) {
+  const std::vector<float> triangle = {-1, -1, 0, 1, -1, 0, 0, 1, 0};
+  std::vector<float> corners = triangle;
+  corners.insert(corners.end(), triangle.begin(), triangle.end());
+  const Scene scene = test::from_triangles(corners);
+  KdTree one_leaf;
+  one_leaf.bounds = Bounds{{-1, -1, -1}, {1, 1, 1}};
+  one_leaf.nodes = {leaf_node(0, 2)};
+  one_leaf.leaf_triangles = {1, 0};
+  // Split at x = 0: triangle 1 only below, triangle 0 only above. The ray meets the triangles
+  // on the split plane, so both leaves touch the hit; the below one comes first.
+  KdTree two_leaves = one_leaf;
+  two_leaves.nodes = {inner_node(0, 0.0f, 2), leaf_node(0, 1), leaf_node(1, 1)};
+  const RayRecord ray{-1, 0, -1, 1, 0, 1, 0, INFINITY};
+  for (const KdTree* tree : {&one_leaf, &two_leaves}) {
+    for (TraversalStack stack : {TraversalStack::Short, TraversalStack::Depth1, TraversalStack::Full}) {
+      const HitRecord hit = intersect_closest(scene, *tree, ray, stack);
+      EXPECT_EQ(hit.triangle, 0u);
+      EXPECT_EQ(hit.t, 1.0f);
+    }
+  }
+}
+
+// Every triangle of a grid twice, the copies first in reverse order: whatever tree is built
+// (its settings change its shape), each hit is exactly the brute force's, which keeps the
+// smallest index of the triangles at the closest t.
+TEST(KdTraverse, DuplicatedTrianglesGiveTheSameHitsInEveryTree) {
+  const Scene grid = test::coplanar_grid(8);
+  std::vector<float> corners;
+  auto append = [&](uint32_t triangle) {
+    for (uint32_t corner = 0; corner < 3; ++corner) {
+      const Vec3& p = grid.positions[grid.indices[3 * triangle + corner]];
+      corners.insert(corners.end(), {p.x, p.y, p.z});
+    }
+  };
+  for (uint32_t triangle = grid.triangle_count(); triangle-- > 0;) append(triangle);
+  for (uint32_t triangle = 0; triangle < grid.triangle_count(); ++triangle) append(triangle);
+  const Scene scene = test::from_triangles(corners);
+  BuildSettings shallow;
+  shallow.max_depth = 2;
+  BuildSettings unclipped;
+  unclipped.perfect_splits = false;
+  unclipped.traversal_cost = 2.0f;
+  std::vector<HitRecord> reference;
+  for (const BuildSettings& settings : {BuildSettings{}, shallow, unclipped}) {
+    const KdTree tree = build_kdtree(scene, settings);
+    const std::vector<RayRecord> rays = random_rays(tree.bounds, 4000, 31);
+    for (TraversalStack stack : {TraversalStack::Short, TraversalStack::Depth1}) {
+      std::vector<HitRecord> hits;
+      trace_closest(scene, tree, rays, hits, {0, stack});
+      if (reference.empty()) {
+        reference = hits;
+        size_t hit_count = 0;
+        for (size_t i = 0; i < rays.size(); ++i) {
+          const HitRecord expected = test::brute_force_float(scene, rays[i]);
+          ASSERT_EQ(hits[i].triangle, expected.triangle) << "ray " << i;
+          ASSERT_EQ(hits[i].t, expected.t) << "ray " << i;
+          hit_count += expected.triangle != KD_NO_HIT ? 1 : 0;
+        }
+        ASSERT_GT(hit_count, rays.size() / 10) << "enough rays meet the grid";
+      }
+      EXPECT_EQ(0, std::memcmp(hits.data(), reference.data(), hits.size() * sizeof(HitRecord)));
+    }
+  }
+}
+
 // Rays from a point inside a closed mesh, aimed at its vertices, edges and random surface
 // points: every one must hit the mesh.
 void expect_no_escape(const Scene& scene, const Vec3& inside, size_t count) {

@@ -9,14 +9,22 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <sys/mman.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
 namespace kdray {
 namespace {
 
-detail::TraversalArrays arrays_of(const KdTree& tree, const std::vector<float>& triangle_vertices) {
+detail::TraversalArrays arrays_of(const KdTree& tree, const KdNode* nodes, const uint32_t* leaf_triangles,
+                                  const float* triangle_vertices) {
   detail::TraversalArrays arrays{};
-  arrays.nodes = tree.nodes.data();
-  arrays.leaf_triangles = tree.leaf_triangles.data();
-  arrays.triangle_vertices = triangle_vertices.data();
+  arrays.nodes = nodes;
+  arrays.leaf_triangles = leaf_triangles;
+  arrays.triangle_vertices = triangle_vertices;
   const float* lo = &tree.bounds.min.x;
   const float* hi = &tree.bounds.max.x;
   for (int k = 0; k < 3; ++k) {
@@ -46,13 +54,11 @@ void parallel_chunks(size_t count, unsigned threads, const Body& body) {
   });
 }
 
-}  // namespace
-
-std::vector<float> gather_triangle_vertices(const Scene& scene) {
+// Writes the KD_TRIANGLE_FLOATS floats per triangle of gather_triangle_vertices to out.
+void gather_triangle_vertices_into(const Scene& scene, float* out) {
   const size_t triangles = scene.triangle_count();
-  std::vector<float> vertices(triangles * KD_TRIANGLE_FLOATS, 0.0f);
   for (size_t triangle = 0; triangle < triangles; ++triangle) {
-    float* corners = vertices.data() + triangle * KD_TRIANGLE_FLOATS;
+    float* corners = out + triangle * KD_TRIANGLE_FLOATS;
     for (size_t corner = 0; corner < 3; ++corner) {
       const Vec3& p = scene.positions[scene.indices[3 * triangle + corner]];
       corners[3 * corner + 0] = p.x;
@@ -60,29 +66,86 @@ std::vector<float> gather_triangle_vertices(const Scene& scene) {
       corners[3 * corner + 2] = p.z;
     }
   }
+}
+
+}  // namespace
+
+std::vector<float> gather_triangle_vertices(const Scene& scene) {
+  std::vector<float> vertices(scene.triangle_count() * KD_TRIANGLE_FLOATS, 0.0f);
+  gather_triangle_vertices_into(scene, vertices.data());
   return vertices;
 }
 
+template <typename T>
+PreparedTraversal::HugePageArray<T>::HugePageArray(size_t count) : count_(count) {
+  constexpr size_t kHugePage = size_t{2} << 20;
+  // Arrays under one huge page gain nothing; they keep the ordinary alignment.
+  const size_t bytes = std::max<size_t>(count * sizeof(T), 1);
+  const size_t alignment = bytes >= kHugePage ? kHugePage : alignof(std::max_align_t);
+  const size_t rounded = (bytes + alignment - 1) / alignment * alignment;
+  void* memory = std::aligned_alloc(alignment, rounded);
+  if (!memory) throw std::bad_alloc();
+  // Advice only: where the kernel has no huge pages to give, the array keeps 4 KiB pages.
+  if (alignment == kHugePage) madvise(memory, rounded, MADV_HUGEPAGE);
+  data_.reset(static_cast<T*>(memory));
+}
+
 PreparedTraversal::PreparedTraversal(const Scene& scene, const KdTree& tree)
-    : tree_(tree), triangle_vertices_(gather_triangle_vertices(scene)) {}
+    : tree_(tree),
+      nodes_(tree.nodes.size()),
+      leaf_triangles_(tree.leaf_triangles.size()),
+      triangle_vertices_(scene.triangle_count() * KD_TRIANGLE_FLOATS) {
+  std::copy(tree.nodes.begin(), tree.nodes.end(), nodes_.data());
+  std::copy(tree.leaf_triangles.begin(), tree.leaf_triangles.end(), leaf_triangles_.data());
+  gather_triangle_vertices_into(scene, triangle_vertices_.data());
+}
+
+size_t PreparedTraversal::bytes() const {
+  return nodes_.size() * sizeof(KdNode) + leaf_triangles_.size() * sizeof(uint32_t) +
+         triangle_vertices_.size() * sizeof(float);
+}
+
+detail::TraversalArrays PreparedTraversal::arrays() const {
+  return arrays_of(tree_, nodes_.data(), leaf_triangles_.data(), triangle_vertices_.data());
+}
 
 void PreparedTraversal::closest(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
                                 const TraceOptions& options) const {
   hits.resize(rays.size());
-  const detail::TraversalArrays arrays = arrays_of(tree_, triangle_vertices_);
+  const detail::TraversalArrays traversal_arrays = arrays();
   const detail::TraversalVariant& variant = variant_of(options.stack);
   parallel_chunks(rays.size(), options.threads, [&](size_t begin, size_t end) {
-    variant.closest(arrays, rays.data() + begin, hits.data() + begin, end - begin);
+    variant.closest(traversal_arrays, rays.data() + begin, hits.data() + begin, end - begin);
   });
+}
+
+TraversalWork PreparedTraversal::count_work(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
+                                            const TraceOptions& options) const {
+  hits.resize(rays.size());
+  const detail::TraversalArrays traversal_arrays = arrays();
+  std::atomic<uint64_t> inner_steps{0}, leaves{0}, triangle_tests{0};
+  parallel_chunks(rays.size(), options.threads, [&](size_t begin, size_t end) {
+    const detail::TraversalCounts counts =
+        detail::count_closest(traversal_arrays, rays.data() + begin, hits.data() + begin, end - begin);
+    inner_steps += counts.inner_steps;
+    leaves += counts.leaves;
+    triangle_tests += counts.triangle_tests;
+  });
+  TraversalWork work;
+  work.rays = rays.size();
+  work.inner_steps = inner_steps;
+  work.leaves = leaves;
+  work.triangle_tests = triangle_tests;
+  return work;
 }
 
 void PreparedTraversal::any(const std::vector<RayRecord>& rays, std::vector<uint8_t>& occluded,
                             const TraceOptions& options) const {
   occluded.resize(rays.size());
-  const detail::TraversalArrays arrays = arrays_of(tree_, triangle_vertices_);
+  const detail::TraversalArrays traversal_arrays = arrays();
   const detail::TraversalVariant& variant = variant_of(options.stack);
   parallel_chunks(rays.size(), options.threads, [&](size_t begin, size_t end) {
-    variant.any(arrays, rays.data() + begin, occluded.data() + begin, end - begin);
+    variant.any(traversal_arrays, rays.data() + begin, occluded.data() + begin, end - begin);
   });
 }
 
@@ -97,8 +160,10 @@ void trace_any(const Scene& scene, const KdTree& tree, const std::vector<RayReco
 }
 
 HitRecord intersect_closest(const Scene& scene, const KdTree& tree, const RayRecord& ray, TraversalStack stack) {
+  const std::vector<float> triangle_vertices = gather_triangle_vertices(scene);
   HitRecord hit;
-  variant_of(stack).closest(arrays_of(tree, gather_triangle_vertices(scene)), &ray, &hit, 1);
+  variant_of(stack).closest(arrays_of(tree, tree.nodes.data(), tree.leaf_triangles.data(), triangle_vertices.data()),
+                            &ray, &hit, 1);
   return hit;
 }
 

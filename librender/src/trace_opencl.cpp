@@ -18,6 +18,15 @@ std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree,
   stats.device = runtime.info().name;
   std::string options = "-cl-std=CL1.2";
   if (device.short_stack_size) options += " -DKD_SHORT_STACK_SIZE=" + std::to_string(device.short_stack_size);
+  // One ray per work-item everywhere: a GPU vectorises across work-items. On a CPU device
+  // (PoCL) each work-item runs as scalar code and waits on its node fetches, so the far child
+  // of a split is prefetched when pushed; GPU compilers need not know __builtin_prefetch.
+  if (runtime.info().is_gpu) {
+    stats.kernel_variant = "one-ray-per-work-item";
+  } else {
+    options += " -DKD_PREFETCH_NODES";
+    stats.kernel_variant = "one-ray-per-work-item+prefetch";
+  }
   cl::ProgramBuild build = runtime.program("kd_trace.cl", options);
   stats.build_seconds = build.seconds;
   stats.build_source = build.source;

@@ -140,22 +140,34 @@ int main(int argc, char** argv) {
       nlohmann::json summary = {{"scene", scene_path}, {"tree", tree_path}, {"rays", rays.size()}, {"hits", hit_count},
                                 {"seconds", run.seconds}, {"cpu_seconds", run.cpu_seconds}, {"mrays_per_s", mrays_per_s},
                                 {"stack", stack_name}};
+      // Per-ray work from a second, counting pass of the same traversal on the CPU (kept out
+      // of the timed run); the kernel runs the same code, so its hits and work are the same.
+      std::vector<HitRecord> counted_hits;
+      const kdray::TraversalWork work =
+          kdray::PreparedTraversal(scene, tree).count_work(rays, counted_hits, {options.threads, kdray::TraversalStack::Short});
+      const double per_ray = rays.empty() ? 0.0 : 1.0 / static_cast<double>(rays.size());
+      summary["per_ray"] = {{"inner_steps", static_cast<double>(work.inner_steps) * per_ray},
+                            {"leaves", static_cast<double>(work.leaves) * per_ray},
+                            {"triangle_tests", static_cast<double>(work.triangle_tests) * per_ray}};
       if (device == Device::Cpu) {
         summary["device"] = "cpu";
         summary["threads"] = options.threads;
+        summary["variant"] = "cpu-one-ray-per-thread+prefetch";
       } else {
         summary["device"] = "opencl";
         summary["opencl_device"] = run.opencl.device;
         summary["build_seconds"] = run.opencl.build_seconds;
         summary["build_source"] = run.opencl.build_source;
         summary["upload_seconds"] = run.opencl.upload_seconds;
+        summary["variant"] = run.opencl.kernel_variant;
       }
       kdray::tool::print_json(summary);
       return kdray::tool::kExitOk;
     }
     if (device == Device::OpenCl)
-      std::printf("OpenCL device %s: program %s in %.3f s, upload %.3f s\n", run.opencl.device.c_str(),
-                  run.opencl.build_source.c_str(), run.opencl.build_seconds, run.opencl.upload_seconds);
+      std::printf("OpenCL device %s (%s): program %s in %.3f s, upload %.3f s\n", run.opencl.device.c_str(),
+                  run.opencl.kernel_variant.c_str(), run.opencl.build_source.c_str(), run.opencl.build_seconds,
+                  run.opencl.upload_seconds);
     std::printf("%zu rays, %zu hits (%.1f%%) in %.3f s: %.2f Mrays/s\n", rays.size(), hit_count,
                 rays.empty() ? 0.0 : 100.0 * static_cast<double>(hit_count) / static_cast<double>(rays.size()),
                 run.seconds, mrays_per_s);

@@ -9,9 +9,14 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
+#include <memory>
 #include <vector>
 
 namespace kdray {
+namespace detail {
+struct TraversalArrays;
+}
 
 enum class TraversalStack {
   Short,   // KD_SHORT_STACK_SIZE entries (8), restart when it runs empty: what the kernels use
@@ -30,6 +35,12 @@ struct TraceOptions {
 // next to the tree.
 std::vector<float> gather_triangle_vertices(const Scene& scene);
 
+// Work of a batch of closest-hit traversals, summed over its rays (kernels/kd_traverse.h's
+// counters): inner-node visit steps, leaves visited (empty ones included) and ray/triangle tests.
+struct TraversalWork {
+  uint64_t rays = 0, inner_steps = 0, leaves = 0, triangle_tests = 0;
+};
+
 // A scene and its tree ready for batches of rays: the triangle vertices gathered once, so
 // repeated batches (and timings of them) do not pay for it again. Keeps references to both.
 class PreparedTraversal {
@@ -43,9 +54,41 @@ class PreparedTraversal {
   // 1 per ray that hits anything with tmin < t < tmax, else 0.
   void any(const std::vector<RayRecord>& rays, std::vector<uint8_t>& occluded, const TraceOptions& options = {}) const;
 
+  // closest() with the short stack, counting its work: a separate, slower build of the
+  // traversal, so timings of closest() never include the counting. The kernels run the same
+  // code, so their work is the same.
+  TraversalWork count_work(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
+                           const TraceOptions& options = {}) const;
+
+  // Bytes of the node, leaf-triangle and vertex arrays traversal reads.
+  size_t bytes() const;
+
  private:
+  // An array in memory the kernel is asked to back with transparent huge pages (where it
+  // offers them on request, madvise mode): random rays touch the whole node array, and with
+  // 4 KiB pages nearly every node fetch also misses the TLB.
+  template <typename T>
+  class HugePageArray {
+   public:
+    explicit HugePageArray(size_t count);
+    T* data() { return data_.get(); }
+    const T* data() const { return data_.get(); }
+    size_t size() const { return count_; }
+
+   private:
+    struct Free {
+      void operator()(T* p) const { std::free(p); }  // from std::aligned_alloc
+    };
+    std::unique_ptr<T, Free> data_;
+    size_t count_;
+  };
+
+  detail::TraversalArrays arrays() const;
+
   const KdTree& tree_;
-  std::vector<float> triangle_vertices_;
+  HugePageArray<KdNode> nodes_;
+  HugePageArray<uint32_t> leaf_triangles_;
+  HugePageArray<float> triangle_vertices_;
 };
 
 // One-batch forms of PreparedTraversal::closest and ::any.

@@ -17,6 +17,7 @@ struct TraceOpenClStats {
   std::string build_source;  // "compiled", "disk cache" or "memory"
   double upload_seconds = 0;
   double trace_seconds = 0;  // kernel time only, rays already on the device
+  std::string kernel_variant;  // how kd_trace.cl was built for this device (trace_rays_opencl)
 };
 
 // Same contract as trace_closest (libkdtree): t = +inf and KD_NO_HIT on a miss.

@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# Traversal benchmark: the same ray files traced by kdray (C++ path and the PoCL kernel) and by
+# Embree 3 (rtcIntersect1, high-quality build, robust mode off), random and camera rays, on the
+# bunny (69k), the dragon (100k) and bunny_sub2 (1.1M). Prints Mrays/s (median of $RUNS runs,
+# the three tracers interleaved in each run), the ratio to Embree, and kdray's per-ray work
+# (inner-node steps, leaves, triangle tests; kdtrace --json). Compiles bench/embree_trace.cpp
+# itself (needs libembree-dev); the project's CMake never builds it.
+#   BUILD=build RUNS=3 RAYS=1000000 THREADS=2 bench/traverse.sh
+# BASELINE=other/build adds a "before" kdtrace (another build of kdray) to every run.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="${BUILD:-$root/build}"
+baseline="${BASELINE:-}"
+corpus="${CORPUS:-$root/../shared/corpus}"
+runs="${RUNS:-3}"
+rays="${RAYS:-1000000}"
+threads="${THREADS:-2}"
+work="${WORK:-${TMPDIR:-/tmp}/kdray-bench-traverse}"
+meshes=(${MESHES:-bunny=bunny/bun_zipper.ply dragon=dragon/dragon_vcg_100k.ply bunny_sub2=large/bunny_sub2.ply})
+mkdir -p "$work"
+embree="$work/embree_trace"
+if [[ ! -x "$embree" || "$root/bench/embree_trace.cpp" -nt "$embree" ]]; then
+  g++ -O2 -std=c++17 -o "$embree" "$root/bench/embree_trace.cpp" -lembree3 -pthread
+fi
+kdtrace="$build/tools/kdtrace/kdtrace"
+
+# field FILE KEY...: a value of the JSON document in FILE (nested keys).
+field() {
+  /usr/bin/python3 -c 'import json,sys; d=json.load(open(sys.argv[1]))
+for k in sys.argv[2:]: d=d[k]
+print(d)' "$@"
+}
+# median VALUES...
+median() { printf "%s\n" "$@" | sort -g | awk '{v[NR]=$1} END {print (NR%2) ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2}'; }
+
+echo "# kdray traversal benchmark: $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')," \
+     "L3 $(lscpu | awk -F: '/L3/ {gsub(/^ +/, "", $2); print $2}')"
+echo "# $threads threads; medians of $runs interleaved runs; random rays: $rays, camera rays: 1024x768;" \
+     "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+printf "%-11s %-7s %8s %8s %8s %8s %7s %7s %7s %7s %7s %7s %s\n" mesh rays embree cpu pocl before cpu/E pocl/E before/E \
+  steps leaves tris "variant(pocl)"
+for entry in "${meshes[@]}"; do
+  name="${entry%%=*}"
+  scene="$work/$name.kdscene"
+  tree="$work/$name.kdtree"
+  [[ -f "$scene" ]] || "$build/tools/kdconvert/kdconvert" "$corpus/${entry#*=}" "$scene" --quiet > /dev/null
+  [[ -f "$tree" ]] || "$build/tools/kdbuild/kdbuild" "$scene" "$tree" --quiet > /dev/null
+  [[ -f "$work/$name.random.rays" ]] ||
+    "$kdtrace" "$scene" "$tree" --generate random --count "$rays" --seed 1 --write-rays "$work/$name.random.rays" > /dev/null
+  [[ -f "$work/$name.camera.rays" ]] ||
+    "$kdtrace" "$scene" "$tree" --generate camera --width 1024 --height 768 --write-rays "$work/$name.camera.rays" > /dev/null
+  for kind in random camera; do
+    ray_file="$work/$name.$kind.rays"
+    e=() c=() p=() b=()
+    for ((run = 0; run < runs; ++run)); do
+      e+=("$("$embree" "$scene" "$ray_file" "$threads" | sed 's/.*: \([0-9.]*\) Mrays.*/\1/')")
+      "$kdtrace" "$scene" "$tree" --rays "$ray_file" --threads "$threads" --json > "$work/cpu.json"
+      c+=("$(field "$work/cpu.json" mrays_per_s)")
+      "$kdtrace" "$scene" "$tree" --rays "$ray_file" --device opencl --opencl-device cpu --json > "$work/pocl.json"
+      p+=("$(field "$work/pocl.json" mrays_per_s)")
+      if [[ -n "$baseline" ]]; then
+        "$baseline/tools/kdtrace/kdtrace" "$scene" "$tree" --rays "$ray_file" --threads "$threads" --json > "$work/before.json"
+        b+=("$(field "$work/before.json" mrays_per_s)")
+      fi
+    done
+    em="$(median "${e[@]}")" cm="$(median "${c[@]}")" pm="$(median "${p[@]}")"
+    bm="-" br="-"
+    if [[ -n "$baseline" ]]; then
+      bm="$(awk -v a="$(median "${b[@]}")" 'BEGIN {printf "%.2f", a}')"
+      br="$(awk -v a="$bm" -v b="$em" 'BEGIN {printf "%.2f", a / b}')"
+    fi
+    printf "%-11s %-7s %8.2f %8.2f %8.2f %8s %7.2f %7.2f %7s %7.1f %7.2f %7.2f %s\n" "$name" "$kind" "$em" "$cm" "$pm" "$bm" \
+      "$(awk -v a="$cm" -v b="$em" 'BEGIN {print a / b}')" "$(awk -v a="$pm" -v b="$em" 'BEGIN {print a / b}')" "$br" \
+      "$(field "$work/cpu.json" per_ray inner_steps)" "$(field "$work/cpu.json" per_ray leaves)" \
+      "$(field "$work/cpu.json" per_ray triangle_tests)" "$(field "$work/pocl.json" variant)"
+  done
+done
+echo "# load average after: $(cut -d' ' -f1-3 /proc/loadavg)"

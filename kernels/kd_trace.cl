@@ -1,15 +1,18 @@
 /* Closest hits for a buffer of rays (kdtrace --device opencl, and the kernel-vs-CPU test).
  * Persistent threads: each work-item fetches its own batch of rays from a global atomic counter
  * until none are left (GUIDE section 4). */
+#define KD_EMPTY_LEAF_BITS
 #include "kd_traverse.h"
 
 #define KD_TRACE_BATCH 32u
 
-__kernel void kd_trace_closest(__global const KdNode* nodes, __global const kd_u32* leaf_triangles,
+__kernel void kd_trace_closest(__global const KdNode* nodes, __global const kd_u32* empty_leaves,
+                               __global const kd_u32* leaf_triangles,
                                __global const float* triangle_vertices, float4 bounds_min, float4 bounds_max, __global const RayRecord* rays,
                                uint ray_count, __global HitRecord* hits, __global uint* next_ray) {
   KdSceneView scene;
   scene.nodes = nodes;
+  scene.empty_leaves = empty_leaves;
   scene.leaf_triangles = leaf_triangles;
   scene.triangle_vertices = triangle_vertices;
   scene.bounds_min[0] = bounds_min.x;

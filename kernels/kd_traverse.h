@@ -85,10 +85,22 @@ typedef struct KdSceneView {
   KD_GLOBAL const kd_u32* leaf_triangles;
   KD_GLOBAL const float* triangle_vertices;
   float bounds_min[3], bounds_max[3];
+#ifdef KD_EMPTY_LEAF_BITS
+  KD_GLOBAL const kd_u32* empty_leaves; /* bit n % 32 of word n / 32: node n is an empty leaf */
+#endif
 #ifdef KD_TRAVERSAL_COUNTERS
   KdTraversalCounters* counters;
 #endif
 } KdSceneView;
+
+/* Empty leaves are most of the leaves a ray meets. Where the host derives a bit per node at
+ * load (KD_EMPTY_LEAF_BITS: 1/64 of the node array, so it stays in cache), the traversal skips
+ * them without fetching their nodes, which for a far child is usually a cache miss. */
+#ifdef KD_EMPTY_LEAF_BITS
+#define KD_IS_EMPTY_LEAF(scene, index) (((scene)->empty_leaves[(index) >> 5] >> ((index) & 31u)) & 1u)
+#else
+#define KD_IS_EMPTY_LEAF(scene, index) 0
+#endif
 
 typedef struct KdStackEntry {
   kd_u32 node;
@@ -258,6 +270,7 @@ KD_INLINE int kd_traverse_pass(const KdSceneView* scene, const KdRay* ray, float
 
   for (;;) {
     KdNode node = scene->nodes[node_index];
+    int empty_leaf = 0; /* reached a leaf known to be empty, without fetching it */
     while (!kd_node_is_leaf(node)) {
       KD_COUNT(scene, inner_steps, 1);
       kd_u32 near_child, far_child;
@@ -269,22 +282,38 @@ KD_INLINE int kd_traverse_pass(const KdSceneView* scene, const KdRay* ray, float
       } else if (visit == KD_VISIT_FAR) {
         node_index = far_child;
       } else {
-        KD_PREFETCH_NODE(scene->nodes + far_child);
-        if (stack_count == KD_SHORT_STACK_SIZE)
-          lost_t_min = kd_minf(lost_t_min, stack[stack_top].t_min);
-        else
-          ++stack_count;
         const float t_boundary = kd_minf(kd_maxf(t_split, t_min), t_max);
-        stack[stack_top].node = far_child;
-        stack[stack_top].t_min = t_boundary;
-        stack[stack_top].t_max = t_max;
-        stack_top = (stack_top + 1) % KD_SHORT_STACK_SIZE;
-        node_index = near_child;
-        t_max = t_boundary;
+        if (KD_IS_EMPTY_LEAF(scene, near_child)) {
+          /* Nothing near: the far segment comes next, as if popped at once. */
+          if (!kd_segment_may_precede(t_boundary, best)) {
+            empty_leaf = 1;
+            break;
+          }
+          node_index = far_child;
+          t_min = t_boundary;
+        } else {
+          if (!KD_IS_EMPTY_LEAF(scene, far_child)) {
+            KD_PREFETCH_NODE(scene->nodes + far_child);
+            if (stack_count == KD_SHORT_STACK_SIZE)
+              lost_t_min = kd_minf(lost_t_min, stack[stack_top].t_min);
+            else
+              ++stack_count;
+            stack[stack_top].node = far_child;
+            stack[stack_top].t_min = t_boundary;
+            stack[stack_top].t_max = t_max;
+            stack_top = (stack_top + 1) % KD_SHORT_STACK_SIZE;
+          }
+          node_index = near_child;
+          t_max = t_boundary;
+        }
+      }
+      if (KD_IS_EMPTY_LEAF(scene, node_index)) {
+        empty_leaf = 1;
+        break;
       }
       node = scene->nodes[node_index];
     }
-    if (kd_intersect_leaf(scene, ray, node, best, any_hit) && any_hit) return 1;
+    if (!empty_leaf && kd_intersect_leaf(scene, ray, node, best, any_hit) && any_hit) return 1;
 
     /* Next segment: the newest pending one that could still hold a preceding hit. */
     int popped = 0;

@@ -10,6 +10,7 @@
 namespace kdray::detail {
 namespace counting_short_stack {
 
+#define KD_EMPTY_LEAF_BITS
 #define KD_TRAVERSAL_COUNTERS
 #include <kernels/kd_traverse.h>
 

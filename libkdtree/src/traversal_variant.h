@@ -15,6 +15,7 @@ struct TraversalArrays {
   const KdNode* nodes;
   const uint32_t* leaf_triangles;
   const float* triangle_vertices;  // KD_TRIANGLE_FLOATS per triangle: gather_triangle_vertices
+  const uint32_t* empty_leaves;    // empty_leaf_bits: every CPU build defines KD_EMPTY_LEAF_BITS
   float bounds_min[3], bounds_max[3];
 };
 
@@ -25,6 +26,7 @@ View make_view(const TraversalArrays& arrays) {
   view.nodes = arrays.nodes;
   view.leaf_triangles = arrays.leaf_triangles;
   view.triangle_vertices = arrays.triangle_vertices;
+  view.empty_leaves = arrays.empty_leaves;
   for (int k = 0; k < 3; ++k) {
     view.bounds_min[k] = arrays.bounds_min[k];
     view.bounds_max[k] = arrays.bounds_max[k];

@@ -20,9 +20,10 @@ namespace kdray {
 namespace {
 
 detail::TraversalArrays arrays_of(const KdTree& tree, const KdNode* nodes, const uint32_t* leaf_triangles,
-                                  const float* triangle_vertices) {
+                                  const float* triangle_vertices, const uint32_t* empty_leaves) {
   detail::TraversalArrays arrays{};
   arrays.nodes = nodes;
+  arrays.empty_leaves = empty_leaves;
   arrays.leaf_triangles = leaf_triangles;
   arrays.triangle_vertices = triangle_vertices;
   const float* lo = &tree.bounds.min.x;
@@ -70,6 +71,14 @@ void gather_triangle_vertices_into(const Scene& scene, float* out) {
 
 }  // namespace
 
+std::vector<uint32_t> empty_leaf_bits(const KdTree& tree) {
+  std::vector<uint32_t> bits((tree.nodes.size() + 31) / 32, 0u);
+  for (size_t node = 0; node < tree.nodes.size(); ++node)
+    if (kd_node_is_leaf(tree.nodes[node]) && kd_leaf_count(tree.nodes[node]) == 0)
+      bits[node / 32] |= 1u << (node % 32);
+  return bits;
+}
+
 std::vector<float> gather_triangle_vertices(const Scene& scene) {
   std::vector<float> vertices(scene.triangle_count() * KD_TRIANGLE_FLOATS, 0.0f);
   gather_triangle_vertices_into(scene, vertices.data());
@@ -94,19 +103,15 @@ PreparedTraversal::PreparedTraversal(const Scene& scene, const KdTree& tree)
     : tree_(tree),
       nodes_(tree.nodes.size()),
       leaf_triangles_(tree.leaf_triangles.size()),
-      triangle_vertices_(scene.triangle_count() * KD_TRIANGLE_FLOATS) {
+      triangle_vertices_(scene.triangle_count() * KD_TRIANGLE_FLOATS),
+      empty_leaves_(empty_leaf_bits(tree)) {
   std::copy(tree.nodes.begin(), tree.nodes.end(), nodes_.data());
   std::copy(tree.leaf_triangles.begin(), tree.leaf_triangles.end(), leaf_triangles_.data());
   gather_triangle_vertices_into(scene, triangle_vertices_.data());
 }
 
-size_t PreparedTraversal::bytes() const {
-  return nodes_.size() * sizeof(KdNode) + leaf_triangles_.size() * sizeof(uint32_t) +
-         triangle_vertices_.size() * sizeof(float);
-}
-
 detail::TraversalArrays PreparedTraversal::arrays() const {
-  return arrays_of(tree_, nodes_.data(), leaf_triangles_.data(), triangle_vertices_.data());
+  return arrays_of(tree_, nodes_.data(), leaf_triangles_.data(), triangle_vertices_.data(), empty_leaves_.data());
 }
 
 void PreparedTraversal::closest(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
@@ -161,9 +166,11 @@ void trace_any(const Scene& scene, const KdTree& tree, const std::vector<RayReco
 
 HitRecord intersect_closest(const Scene& scene, const KdTree& tree, const RayRecord& ray, TraversalStack stack) {
   const std::vector<float> triangle_vertices = gather_triangle_vertices(scene);
+  const std::vector<uint32_t> empty_leaves = empty_leaf_bits(tree);
   HitRecord hit;
-  variant_of(stack).closest(arrays_of(tree, tree.nodes.data(), tree.leaf_triangles.data(), triangle_vertices.data()),
-                            &ray, &hit, 1);
+  variant_of(stack).closest(
+      arrays_of(tree, tree.nodes.data(), tree.leaf_triangles.data(), triangle_vertices.data(), empty_leaves.data()),
+      &ray, &hit, 1);
   return hit;
 }
 

@@ -2,6 +2,7 @@
 #include "device_scene.h"
 
 #include <kdray/trace_opencl.h>
+#include <kdray/traverse.h>
 
 #include <chrono>
 
@@ -33,6 +34,8 @@ std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree,
 
   auto upload_start = Clock::now();
   DeviceGeometry geometry = upload_geometry(runtime, scene, tree);
+  const std::vector<uint32_t> empty_leaves = empty_leaf_bits(tree);
+  cl::Buffer empty_leaf_buffer = runtime.buffer(empty_leaves.size() * sizeof(uint32_t), empty_leaves.data());
   cl::Buffer ray_buffer = runtime.buffer(rays.size() * sizeof(RayRecord), rays.data());
   cl::Buffer hit_buffer = runtime.buffer(rays.size() * sizeof(HitRecord), nullptr, CL_MEM_WRITE_ONLY);
   cl::Buffer counter = runtime.buffer(sizeof(cl_uint), nullptr, CL_MEM_READ_WRITE);
@@ -43,6 +46,7 @@ std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree,
   cl_uint ray_count = static_cast<cl_uint>(rays.size());
   cl_uint arg = 0;
   cl::set_arg(kernel.get(), arg++, geometry.nodes);
+  cl::set_arg(kernel.get(), arg++, empty_leaf_buffer);
   cl::set_arg(kernel.get(), arg++, geometry.leaf_triangles);
   cl::set_arg(kernel.get(), arg++, geometry.triangle_vertices);
   cl::set_arg(kernel.get(), arg++, bounds_min);

@@ -35,8 +35,14 @@ struct TraceOptions {
 // next to the tree.
 std::vector<float> gather_triangle_vertices(const Scene& scene);
 
+// One bit per node of the tree, set for empty leaves (bit n % 32 of word n / 32): derived at
+// load for traversals built with KD_EMPTY_LEAF_BITS (KdSceneView.empty_leaves), which skip
+// empty leaves without fetching them.
+std::vector<uint32_t> empty_leaf_bits(const KdTree& tree);
+
 // Work of a batch of closest-hit traversals, summed over its rays (kernels/kd_traverse.h's
-// counters): inner-node visit steps, leaves visited (empty ones included) and ray/triangle tests.
+// counters): inner-node visit steps, leaves visited (empty ones skipped by their bit not
+// counted) and ray/triangle tests.
 struct TraversalWork {
   uint64_t rays = 0, inner_steps = 0, leaves = 0, triangle_tests = 0;
 };
@@ -59,9 +65,6 @@ class PreparedTraversal {
   // code, so their work is the same.
   TraversalWork count_work(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
                            const TraceOptions& options = {}) const;
-
-  // Bytes of the node, leaf-triangle and vertex arrays traversal reads.
-  size_t bytes() const;
 
  private:
   // An array in memory the kernel is asked to back with transparent huge pages (where it
@@ -89,6 +92,7 @@ class PreparedTraversal {
   HugePageArray<KdNode> nodes_;
   HugePageArray<uint32_t> leaf_triangles_;
   HugePageArray<float> triangle_vertices_;
+  std::vector<uint32_t> empty_leaves_;  // empty_leaf_bits
 };
 
 // One-batch forms of PreparedTraversal::closest and ::any.

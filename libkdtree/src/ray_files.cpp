@@ -1,11 +1,13 @@
+#include <kdray/atomic_file.h>
 #include <kdray/error.h>
 #include <kdray/ray_files.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
-#include <fstream>
+#include <vector>
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace kdray {
@@ -15,42 +17,28 @@ static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "ray and hit files are 
 
 template <typename Record>
 std::vector<Record> read_records(const std::string& path, const char* what) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw Error(path, std::string("cannot open: ") + std::strerror(errno));
-  const std::streamoff size = in.tellg();
-  if (size < 0 || size % static_cast<std::streamoff>(sizeof(Record)) != 0)
+  // O_NONBLOCK so a FIFO given by mistake is rejected below instead of waiting for a writer.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) throw Error(path, std::string("cannot open: ") + std::strerror(errno));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat status {};
+  if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode)) throw Error(path, "not a regular file");
+  const uint64_t size = uint64_t(status.st_size);
+  if (size % sizeof(Record) != 0)
     throw Error(path, std::string("not a ") + what + " file: its size is not a multiple of " +
                           std::to_string(sizeof(Record)) + " bytes");
-  std::vector<Record> records(static_cast<size_t>(size) / sizeof(Record));
-  in.seekg(0);
-  if (!in.read(reinterpret_cast<char*>(records.data()), size)) throw Error(path, "cannot read");
+  std::vector<Record> records(size / sizeof(Record));
+  char* bytes = reinterpret_cast<char*>(records.data());
+  for (uint64_t done = 0; done < size;) {
+    const ssize_t got = ::read(fd, bytes + done, size - done);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) throw Error(path, got < 0 ? std::string("cannot read: ") + std::strerror(errno) : "cannot read: shorter than its size");
+    done += uint64_t(got);
+  }
   return records;
-}
-
-void write_atomically(const std::string& path, const void* data, size_t size) {
-  std::string temporary = path + ".tmp-XXXXXX";
-  const int fd = ::mkstemp(temporary.data());
-  if (fd < 0) throw Error(path, std::string("cannot create: ") + std::strerror(errno));
-  const char* bytes = static_cast<const char*>(data);
-  size_t left = size;
-  bool ok = true;
-  while (ok && left > 0) {
-    const ssize_t written = ::write(fd, bytes, left);
-    if (written < 0 && errno == EINTR) continue;
-    ok = written > 0;
-    if (ok) {
-      bytes += written;
-      left -= static_cast<size_t>(written);
-    }
-  }
-  const int saved_errno = errno;
-  ok = ok && ::fsync(fd) == 0;
-  ::close(fd);
-  if (!ok || std::rename(temporary.c_str(), path.c_str()) != 0) {
-    const int error = ok ? errno : saved_errno;
-    ::unlink(temporary.c_str());
-    throw Error(path, std::string("cannot write: ") + std::strerror(error));
-  }
 }
 
 }  // namespace
@@ -59,10 +47,10 @@ std::vector<RayRecord> read_rays(const std::string& path) { return read_records<
 std::vector<HitRecord> read_hits(const std::string& path) { return read_records<HitRecord>(path, "hit"); }
 
 void write_rays(const std::string& path, const std::vector<RayRecord>& rays) {
-  write_atomically(path, rays.data(), rays.size() * sizeof(RayRecord));
+  write_file_atomically(path, rays.data(), rays.size() * sizeof(RayRecord));
 }
 void write_hits(const std::string& path, const std::vector<HitRecord>& hits) {
-  write_atomically(path, hits.data(), hits.size() * sizeof(HitRecord));
+  write_file_atomically(path, hits.data(), hits.size() * sizeof(HitRecord));
 }
 
 }  // namespace kdray

@@ -1,3 +1,4 @@
+#include <kdray/atomic_file.h>
 #include <kdray/error.h>
 #include <kdray/image_compare.h>
 
@@ -6,10 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <limits>
-#include <random>
 #include <string>
 
 namespace kdray {
@@ -31,15 +30,6 @@ OIIO::TypeDesc storage_type_for(const std::string& path) {
     return OIIO::TypeDesc::UINT8;
   }
   return OIIO::TypeDesc::FLOAT;
-}
-
-// Sibling of `path` that keeps its extension, so OIIO picks the same format for the temp file.
-std::string temporary_sibling(const std::string& path) {
-  const fs::path target(path);
-  std::random_device entropy;
-  char tag[16];
-  std::snprintf(tag, sizeof tag, "%08x", unsigned(entropy()));
-  return (target.parent_path() / (target.stem().string() + ".tmp-" + tag + target.extension().string())).string();
 }
 
 std::vector<size_t> channel_indices(const FloatImage& image, const std::vector<std::string>& names,
@@ -193,22 +183,11 @@ void write_float_image_atomic(const std::string& path, const FloatImage& image) 
   OIIO::ImageSpec spec(image.width, image.height, int(image.channel_count()), storage_type_for(path));
   spec.channelnames = image.channel_names;
   spec.alpha_channel = image.alpha_channel;
-  const std::string temporary = temporary_sibling(path);
-  const bool written = output->open(temporary, spec) &&
+  AtomicFile file(path);
+  const bool written = output->open(file.temporary_path(), spec) &&
                        output->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) && output->close();
-  if (!written) {
-    const std::string why = output->geterror();
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw Error(path, "cannot write image: " + why);
-  }
-  std::error_code rename_error;
-  fs::rename(temporary, path, rename_error);
-  if (rename_error) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw Error(path, "cannot move the finished image into place: " + rename_error.message());
-  }
+  if (!written) throw Error(path, "cannot write image: " + output->geterror());
+  file.commit();
 }
 
 bool images_same_size(const FloatImage& a, const FloatImage& b) {

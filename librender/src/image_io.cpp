@@ -1,4 +1,5 @@
 // Film images through OpenImageIO (see image_io.h).
+#include <kdray/atomic_file.h>
 #include <kdray/error.h>
 #include <kdray/image_io.h>
 
@@ -9,8 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-
-#include <unistd.h>
+#include <fstream>
 
 namespace kdray {
 namespace fs = std::filesystem;
@@ -39,26 +39,16 @@ uint8_t srgb_byte(float linear) {
   return static_cast<uint8_t>(std::lround(encoded * 255.0f));
 }
 
-// Writes through a temporary file next to path (same extension, so OIIO picks the format).
+// Writes through a temporary sibling that keeps the extension, so OIIO picks the format.
 void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, const void* pixels) {
-  fs::path target(path);
-  fs::path temp = target.parent_path() /
-                  ("." + target.stem().string() + ".tmp-" + std::to_string(getpid()) + target.extension().string());
-  auto out = OIIO::ImageOutput::create(temp.string());
+  AtomicFile file(path);
+  auto out = OIIO::ImageOutput::create(file.temporary_path());
   if (!out) throw Error(path, "cannot write this image format: " + OIIO::geterror());
-  bool ok = out->open(temp.string(), spec) && out->write_image(OIIO::TypeDesc::UNKNOWN, pixels);
+  bool ok = out->open(file.temporary_path(), spec) && out->write_image(OIIO::TypeDesc::UNKNOWN, pixels);
   std::string problem = ok ? std::string() : out->geterror();
   ok = out->close() && ok;
-  std::error_code error;
-  if (!ok) {
-    fs::remove(temp, error);
-    throw Error(path, "cannot write image: " + (problem.empty() ? std::string("I/O error") : problem));
-  }
-  fs::rename(temp, target, error);
-  if (error) {
-    fs::remove(temp, error);
-    throw Error(path, "cannot move the finished image into place: " + error.message());
-  }
+  if (!ok) throw Error(path, "cannot write image: " + (problem.empty() ? std::string("I/O error") : problem));
+  file.commit();
 }
 
 void write_exr(const std::string& path, const Film& film) {
@@ -124,6 +114,82 @@ uint64_t parse_hex(const std::string& path, const std::string& text) {
   return value;
 }
 
+// What an OpenEXR header claims, read by kdray before OpenEXR sees the file: OpenEXR sizes its
+// chunk offset tables and line buffers from the data window while opening, so a hostile header
+// could make it allocate any amount of memory before kdray gets a say.
+struct ExrClaims {
+  int64_t width = 0, height = 0, channels = 0;
+};
+
+ExrClaims read_exr_claims(const std::string& path, const std::string& header) {
+  auto fail = [&](const std::string& what) { return Error(path, "not a kdrender EXR: " + what); };
+  if (header.size() < 8 || header.compare(0, 4, "\x76\x2f\x31\x01") != 0) throw fail("not an OpenEXR file");
+  // kdrender writes single-part scanline files; tiles are sized by their own header field.
+  constexpr uint8_t kTiled = 0x02, kDeep = 0x08, kMultiPart = 0x10;  // bits 9, 11, 12 of the version field
+  if (uint8_t(header[5]) & (kTiled | kDeep | kMultiPart)) throw fail("a tiled, deep or multi-part file");
+  ExrClaims claims;
+  bool have_window = false, have_channels = false;
+  size_t at = 8;
+  auto zero_terminated = [&]() {
+    const size_t end = header.find('\0', at);
+    if (end == std::string::npos) throw fail("damaged header");
+    std::string text = header.substr(at, end - at);
+    at = end + 1;
+    return text;
+  };
+  auto int32_at = [&](size_t offset) {
+    int32_t value;
+    std::memcpy(&value, header.data() + offset, 4);
+    return int64_t(value);
+  };
+  for (;;) {
+    const std::string name = zero_terminated();
+    if (name.empty()) break;  // the end of the (first) header
+    const std::string type = zero_terminated();
+    if (at + 4 > header.size()) throw fail("damaged header");
+    const int64_t size = int32_at(at);
+    at += 4;
+    if (size < 0 || uint64_t(size) > header.size() - at) throw fail("damaged header");
+    if (name == "dataWindow" && type == "box2i" && size == 16) {
+      claims.width = int32_at(at + 8) - int32_at(at) + 1;
+      claims.height = int32_at(at + 12) - int32_at(at + 4) + 1;
+      have_window = true;
+    } else if (name == "channels" && type == "chlist") {
+      // Each entry: a zero-terminated name and 16 bytes; a zero byte ends the list.
+      for (size_t entry = at; entry < at + size_t(size) && header[entry] != '\0'; ++claims.channels) {
+        const size_t end = header.find('\0', entry);
+        if (end == std::string::npos || end + 17 > at + size_t(size)) throw fail("damaged channel list");
+        entry = end + 17;
+      }
+      have_channels = true;
+    }
+    at += size_t(size);
+  }
+  if (!have_window || !have_channels) throw fail("no data window or channel list in the header");
+  return claims;
+}
+
+// A kdrender film is ZIP-compressed, and deflate expands at most 1032-fold: more pixels than
+// that ratio allows cannot be in the file.
+void check_exr_claims(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::string header(64 * 1024, '\0');  // far more than any kdrender header
+  file.read(header.data(), std::streamsize(header.size()));
+  header.resize(size_t(file.gcount()));
+  const ExrClaims claims = read_exr_claims(path, header);
+  std::error_code error;
+  const uint64_t file_size = fs::file_size(path, error);
+  constexpr uint64_t kMaxExpansion = 1032;
+  const bool sane = claims.width > 0 && claims.height > 0 && claims.channels > 0 && claims.width <= INT32_MAX &&
+                    claims.height <= INT32_MAX && claims.channels <= 1024;
+  // Each channel is read as 32-bit values.
+  if (error || !sane ||
+      uint64_t(claims.width) * uint64_t(claims.height) * uint64_t(claims.channels) * 4 / kMaxExpansion > file_size)
+    throw Error(path, "not a kdrender EXR: the header announces " + std::to_string(claims.width) + "x" +
+                          std::to_string(claims.height) + " pixels of " + std::to_string(claims.channels) +
+                          " channels, which a " + std::to_string(file_size) + "-byte film cannot hold");
+}
+
 }  // namespace
 
 bool is_supported_image_path(const std::string& path) {
@@ -139,9 +205,15 @@ void write_film_image(const std::string& path, const Film& film) {
 }
 
 Film read_film_exr(const std::string& path) {
+  std::error_code error;
+  if (!fs::is_regular_file(path, error))
+    throw Error(path, fs::exists(path, error) ? "not a regular file" : "no such file");
+  check_exr_claims(path);
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw Error(path, "cannot read image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
+  if (spec.deep || spec.x != 0 || spec.y != 0 || spec.z != 0 || spec.depth != 1)
+    throw Error(path, "not a kdrender EXR: a deep image, or its data window does not start at the origin");
   Film film;
   film.width = uint32_t(spec.width);
   film.height = uint32_t(spec.height);

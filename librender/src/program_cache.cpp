@@ -3,6 +3,7 @@
 // (source, options, device name, driver version), written atomically.
 #include "opencl_runtime.h"
 
+#include <kdray/atomic_file.h>
 #include <kdray/embedded_kernels.h>
 #include <kdray/error.h>
 
@@ -18,7 +19,6 @@
 #include <stdexcept>
 #include <vector>
 
-#include <unistd.h>
 
 namespace kdray {
 namespace fs = std::filesystem;
@@ -93,17 +93,10 @@ void write_cached_binary(const std::string& dir, const std::string& path, cl_pro
   if (clGetProgramInfo(program, CL_PROGRAM_BINARIES, sizeof pointer, &pointer, nullptr) != CL_SUCCESS) return;
   std::error_code error;
   fs::create_directories(dir, error);
-  std::string temp = path + ".tmp-" + std::to_string(getpid());
-  {
-    std::ofstream out(temp, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(binary.data()), static_cast<std::streamsize>(size));
-    if (!out.flush()) {
-      fs::remove(temp, error);
-      return;
-    }
+  try {
+    write_file_atomically(path, binary.data(), size);
+  } catch (const Error&) {
   }
-  fs::rename(temp, path, error);
-  if (error) fs::remove(temp, error);
 }
 
 cl_program program_from_binary(cl_context context, cl_device_id device, const std::vector<unsigned char>& binary,

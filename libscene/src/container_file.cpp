@@ -1,3 +1,4 @@
+#include <kdray/atomic_file.h>
 #include <kdray/container_file.h>
 #include <kdray/error.h>
 
@@ -8,7 +9,6 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
-#include <random>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -69,13 +69,6 @@ bool read_all(int fd, void* data, uint64_t size, const std::string& path) {
   return true;
 }
 
-std::string temporary_name_for(const std::string& path) {
-  std::random_device entropy;
-  char suffix[16];
-  std::snprintf(suffix, sizeof suffix, ".tmp-%08x", entropy());
-  return path + suffix;
-}
-
 struct OpenedContainer {
   std::unique_ptr<FileDescriptor> file;
   ContainerContents contents;
@@ -83,7 +76,9 @@ struct OpenedContainer {
 
 OpenedContainer open_and_validate(const std::string& path, const char (&magic)[8],
                                   uint32_t max_version, const char* kind_name) {
-  int raw_fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: opening a FIFO (or a device) must not wait for a writer; such files are then
+  // rejected as not regular. It has no effect on reading a regular file.
+  int raw_fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (raw_fd < 0) throw Error(path, std::string("cannot open: ") + std::strerror(errno));
   OpenedContainer opened{std::make_unique<FileDescriptor>(raw_fd), {}};
   struct stat status {};
@@ -168,29 +163,22 @@ void write_container(const std::string& path, const ContainerHeaderInfo& info,
   header.payload_checksum = XXH3_64bits_digest(state);
   XXH3_freeState(state);
 
-  const std::string temporary = temporary_name_for(path);
-  FileDescriptor file(::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644));
+  AtomicFile output(path);
+  FileDescriptor file(::open(output.temporary_path().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
   if (file.get() < 0) throw Error(path, std::string("cannot create: ") + std::strerror(errno));
-  try {
-    position = 0;
-    auto put = [&](const void* data, uint64_t size) {
-      write_all(file.get(), data, size, path);
-      position += size;
-    };
-    put(&header, sizeof header);
-    put(table.data(), table.size() * sizeof(format::SectionEntry));
-    for (size_t i = 0; i < sections.size(); ++i) {
-      put(kZeros, table[i].offset - position);
-      put(sections[i].data, sections[i].size);
-    }
-    if (::fsync(file.get()) != 0) throw Error(path, std::string("cannot flush: ") + std::strerror(errno));
-    if (::close(file.release()) != 0) throw Error(path, std::string("cannot close: ") + std::strerror(errno));
-    if (::rename(temporary.c_str(), path.c_str()) != 0)
-      throw Error(path, std::string("cannot rename the temporary file into place: ") + std::strerror(errno));
-  } catch (...) {
-    ::unlink(temporary.c_str());
-    throw;
+  position = 0;
+  auto put = [&](const void* data, uint64_t size) {
+    write_all(file.get(), data, size, path);
+    position += size;
+  };
+  put(&header, sizeof header);
+  put(table.data(), table.size() * sizeof(format::SectionEntry));
+  for (size_t i = 0; i < sections.size(); ++i) {
+    put(kZeros, table[i].offset - position);
+    put(sections[i].data, sections[i].size);
   }
+  if (::close(file.release()) != 0) throw Error(path, std::string("cannot close: ") + std::strerror(errno));
+  output.commit();
 }
 
 ContainerContents peek_container(const std::string& path, const char (&magic)[8], uint32_t max_version,
@@ -231,9 +219,12 @@ ContainerContents read_container(const std::string& path, const char (&magic)[8]
 }
 
 std::string file_magic(const std::string& path) {
-  FileDescriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  FileDescriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK));
+  struct stat status {};
   char magic[8];
-  if (file.get() < 0 || !read_all(file.get(), magic, 8, path)) return {};
+  if (file.get() < 0 || ::fstat(file.get(), &status) != 0 || !S_ISREG(status.st_mode) ||
+      !read_all(file.get(), magic, 8, path))
+    return {};
   return std::string(magic, 8);
 }
 

@@ -95,7 +95,8 @@ Scene import_scene(const std::string& path, const ImportOptions& options) {
   if (!(options.scale > 0) || !std::isfinite(options.scale)) throw Error("", "the scale must be a positive number");
   const bool use_tinyobj =
       options.importer == Importer::TinyObj || (options.importer == Importer::Auto && has_obj_extension(path));
-  Scene scene = use_tinyobj ? import_with_tinyobj(path) : import_with_assimp(path);
+  // Debian's Assimp aborts or crashes on some malformed files (RELIABILITY.md): it runs apart.
+  Scene scene = use_tinyobj ? import_with_tinyobj(path) : import_in_child_process(path, import_with_assimp, "Assimp");
   scene.import_stats.source_file = std::filesystem::path(path).filename().string();
   if (scene.indices.empty()) {
     const ImportStats& s = scene.import_stats;

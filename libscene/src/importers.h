@@ -13,6 +13,12 @@ namespace kdray {
 Scene import_with_tinyobj(const std::string& path);
 Scene import_with_assimp(const std::string& path);
 
+// Runs `importer` in a child process and returns its scene; the child's death (an abort or a
+// crash inside a third-party importer, or the kernel killing it for memory) becomes a
+// kdray::Error naming `path` and `importer_name`, and the importer's own errors pass through.
+Scene import_in_child_process(const std::string& path, Scene (*importer)(const std::string&),
+                              const char* importer_name);
+
 // Decodes each distinct texture once and appends it to scene.textures; unreadable textures
 // become warnings in scene.import_stats and index -1.
 class TextureCache {

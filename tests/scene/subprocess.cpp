@@ -50,13 +50,16 @@ ProcessResult run_process(const std::vector<std::string>& argv, double timeout_s
   int status = 0;
   auto pause = std::chrono::microseconds(200);
   while (::waitpid(child, &status, WNOHANG) == 0) {
-    if (std::chrono::steady_clock::now() > deadline) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) {
       ::kill(child, SIGKILL);
       ::waitpid(child, &status, 0);
       result.timed_out = true;
       break;
     }
-    std::this_thread::sleep_for(pause);
+    // Never past the deadline: the interrupted-write tests kill at a chosen moment.
+    const auto remaining = std::chrono::duration_cast<std::chrono::microseconds>(deadline - now);
+    std::this_thread::sleep_for(std::min(pause, remaining + std::chrono::microseconds(1)));
     pause = std::min(pause * 2, std::chrono::microseconds(20000));
   }
   result.exited = !result.timed_out && WIFEXITED(status);

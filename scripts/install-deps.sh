@@ -10,6 +10,7 @@ packages=(
   libopenimageio-dev openimageio-tools libimath-dev
   libgtest-dev googletest
   python3-matplotlib python3-numpy bc
+  clang libclang-rt-14-dev
 )
 missing=()
 for package in "${packages[@]}"; do

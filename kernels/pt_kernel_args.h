@@ -13,6 +13,7 @@
       __global const kd_u32 *material_ids,                                                               \
       __global const PtMaterial *materials, __global const float *normals, __global const float *uvs,    \
       __global const PtTexture *textures, __global const float4 *texels, __global const PtLight *lights, \
+      __global const float4 *env_texels, __global const float *env_cdf, __global const PtPunctual *punctuals, \
       __global const PtRenderParams *params
 
 inline PtSceneData pt_make_scene(__global const KdNode* nodes, __global const kd_u32* leaf_triangles,
@@ -20,7 +21,9 @@ inline PtSceneData pt_make_scene(__global const KdNode* nodes, __global const kd
                                  __global const kd_u32* material_ids, __global const PtMaterial* materials,
                                  __global const float* normals, __global const float* uvs,
                                  __global const PtTexture* textures, __global const float4* texels,
-                                 __global const PtLight* lights, __global const PtRenderParams* params) {
+                                 __global const PtLight* lights, __global const float4* env_texels,
+                                 __global const float* env_cdf, __global const PtPunctual* punctuals,
+                                 __global const PtRenderParams* params) {
   PtSceneData scene;
   scene.kd.nodes = nodes;
   scene.kd.leaf_triangles = leaf_triangles;
@@ -37,11 +40,14 @@ inline PtSceneData pt_make_scene(__global const KdNode* nodes, __global const kd
   scene.textures = textures;
   scene.texels = texels;
   scene.lights = lights;
+  scene.env_texels = env_texels;
+  scene.env_cdf = env_cdf;
+  scene.punctuals = punctuals;
   return scene;
 }
 #define PT_MAKE_SCENE()                                                                               \
   pt_make_scene(nodes, leaf_triangles, triangle_vertices, indices, material_ids, materials, normals, \
-                uvs, textures, texels, lights, params)
+                uvs, textures, texels, lights, env_texels, env_cdf, punctuals, params)
 
 /* stats[0]: rays traced, stats[1]: non-finite sample values. */
 inline void pt_add_stats(__global ulong* stats, ulong rays, uint nonfinite) {

@@ -8,6 +8,7 @@
 
 #include "kd_traverse.h"
 #include "pt_bsdf.h"
+#include "pt_lights.h"
 #include "pt_rng.h"
 #include "pt_types.h"
 
@@ -26,6 +27,9 @@ typedef struct PtSceneData {
   __global const PtTexture* textures;
   __global const float4* texels;
   __global const PtLight* lights;
+  __global const float4* env_texels;   /* KD_FEATURE_ENVIRONMENT (kernels/pt_environment.h) */
+  __global const float* env_cdf;
+  __global const PtPunctual* punctuals; /* KD_FEATURE_PUNCTUAL */
 } PtSceneData;
 
 typedef struct PtPath {
@@ -155,8 +159,8 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const
   if (bsdf_pdf <= 0.0f || dot(wi, ng) <= 0.0f) return;
   PtMaterial light = scene->materials[scene->material_ids[tri]];
   float3 emission = vload3(0, light.emission);
-  float light_pdf = pt_luminance(emission) * params->light_area_pdf_scale * dist2 / cos_light;
-  float weight = pt_power_heuristic(light_pdf, bsdf_pdf);
+  float light_pdf = PT_SELECT_TRIANGLES(params) * pt_luminance(emission) * params->light_area_pdf_scale * dist2 / cos_light;
+  float weight = pt_mis_light(light_pdf, bsdf_pdf);
   float3 origin = pt_offset_origin(p, ng);
   float3 target = pt_offset_origin(y, light_normal);
   path->shadow_origin = (float4)(origin, 0.0f);
@@ -165,6 +169,64 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const
   path->shadow_pending = 1;
 }
 
+#if defined(KD_FEATURE_ENVIRONMENT) || defined(KD_FEATURE_PUNCTUAL)
+/* Next-event estimation towards a sampled environment direction or punctual light. */
+inline void pt_shadow_towards(PtPath* path, const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng,
+                              float3 wo, PtLightSample ls) {
+  if (dot(ls.wi, ng) <= 0.0f || pt_max3(ls.value) <= 0.0f) return;
+  float bsdf_pdf;
+  float3 f_cos = pt_bsdf_eval(m, color, n, wo, ls.wi, &bsdf_pdf);
+  if (pt_max3(f_cos) <= 0.0f) return;
+  float weight = ls.pdf > 0.0f ? pt_mis_light(ls.pdf, bsdf_pdf) : 1.0f;
+  float3 origin = pt_offset_origin(p, ng);
+  path->shadow_origin = (float4)(origin, 0.0f);
+  path->shadow_span = (float4)(ls.wi * ls.distance, 0.0f);
+  path->shadow_contribution = (float4)(path->throughput.xyz * f_cos * ls.value * weight, 0.0f);
+  path->shadow_pending = 1;
+}
+
+/* Picks a kind of light with the probabilities in params (its own sample dimension; rescaled, the
+ * same number then picks a punctual light) and estimates its direct light. */
+inline void pt_next_event_any(PtPath* path, const PtSceneData* scene, __global const PtRenderParams* params,
+                              const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng, float3 wo) {
+  float u = pt_path_sample(path, params, PT_DIM_LIGHT_TYPE);
+#ifdef KD_FEATURE_EMISSION
+  if (u < params->select_triangles) {
+    pt_next_event(path, scene, params, m, color, p, n, ng, wo);
+    return;
+  }
+#endif
+  u -= params->select_triangles;
+#ifdef KD_FEATURE_ENVIRONMENT
+  if (u < params->select_environment) {
+    pt_shadow_towards(path, m, color, p, n, ng, wo,
+                      pt_env_sample_light(scene->env_texels, scene->env_cdf, params, p,
+                                          pt_path_sample2(path, params, PT_DIM_ENV_U)));
+    return;
+  }
+  u -= params->select_environment;
+#endif
+#ifdef KD_FEATURE_PUNCTUAL
+  float rest = 1.0f - params->select_triangles - params->select_environment;
+  if (params->punctual_count > 0 && rest > 0.0f) {
+    pt_shadow_towards(path, m, color, p, n, ng, wo,
+                      pt_punctual_sample_light(scene->punctuals, params, p, fmin(u / rest, 0.99999994f)));
+  }
+#endif
+}
+#endif
+
+#ifdef KD_FEATURE_ENVIRONMENT
+/* A ray that leaves the scene sees the environment (camera rays too), MIS-weighted against
+ * next-event estimation when a BSDF sample sent it. */
+inline void pt_path_escape(PtPath* path, const PtSceneData* scene, __global const PtRenderParams* params) {
+  float2 uv = pt_env_uv(params, path->direction.xyz);
+  float weight = 1.0f;
+  if (path->bsdf_pdf > 0.0f) weight = pt_mis_bsdf(path->bsdf_pdf, pt_env_pdf(scene->env_cdf, params, uv));
+  path->radiance.xyz += path->throughput.xyz * pt_env_lookup(scene->env_texels, params, uv) * weight;
+}
+#endif
+
 /* Advances the path by its closest hit. Bounce k is the k-th surface the path meets; light
  * is gathered at it (emission, and next-event estimation for surface k+1's light) and a new
  * direction sampled while k <= max_bounces, as Cycles counts: max_bounces 0 is direct light only. */
@@ -172,6 +234,9 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
                           HitRecord hit) {
   path->shadow_pending = 0;
   if (hit.triangle == KD_NO_HIT) {
+#ifdef KD_FEATURE_ENVIRONMENT
+    pt_path_escape(path, scene, params);
+#endif
     path->alive = 0;
     return;
   }
@@ -214,8 +279,9 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
     float3 emission = vload3(0, m.emission);
     float weight = 1.0f;
     if (path->bsdf_pdf > 0.0f) {
-      float light_pdf = pt_luminance(emission) * params->light_area_pdf_scale * hit.t * hit.t / dot(ng, wo);
-      weight = pt_power_heuristic(path->bsdf_pdf, light_pdf);
+      float light_pdf = PT_SELECT_TRIANGLES(params) * pt_luminance(emission) * params->light_area_pdf_scale *
+                        hit.t * hit.t / dot(ng, wo);
+      weight = pt_mis_bsdf(path->bsdf_pdf, light_pdf);
     }
     path->radiance.xyz += beta * emission * weight;
   }
@@ -233,7 +299,9 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
     beta /= survive;
     path->throughput.xyz = beta;
   }
-#ifdef KD_FEATURE_EMISSION
+#if defined(KD_FEATURE_ENVIRONMENT) || defined(KD_FEATURE_PUNCTUAL)
+  if (!pt_is_delta(m.type)) pt_next_event_any(path, scene, params, &m, color, p, n, ng_facing, wo);
+#elif defined(KD_FEATURE_EMISSION)
   if (params->light_count > 0 && !pt_is_delta(m.type)) pt_next_event(path, scene, params, &m, color, p, n, ng_facing, wo);
 #endif
   float2 u = pt_path_sample2(path, params, PT_DIM_BSDF_U);

@@ -38,6 +38,23 @@ typedef struct PtLight {
 } PtLight;
 KD_STATIC_ASSERT(sizeof(PtLight) == 8, "PtLight is 8 bytes");
 
+/* A punctual light (KD_FEATURE_PUNCTUAL), sampled by next-event estimation only. Point and spot
+ * lights have an intensity in W/sr, directional lights an irradiance in W/m^2 (`power`). Spot cone:
+ * full intensity within the inner half-angle, none outside the outer one, the glTF falloff between
+ * (cos_inner, cos_outer hold the cosines). */
+#define PT_PUNCTUAL_POINT 0u
+#define PT_PUNCTUAL_SPOT 1u
+#define PT_PUNCTUAL_DIRECTIONAL 2u
+typedef struct PtPunctual {
+  float position[3];
+  kd_u32 type;
+  float direction[3]; /* unit, the way the light shines (spot, directional) */
+  float cos_inner;
+  float power[3];
+  float cos_outer;
+} PtPunctual;
+KD_STATIC_ASSERT(sizeof(PtPunctual) == 48, "PtPunctual is 48 bytes");
+
 /* Film channel layout: 3 radiance sums, then the AOVs in this order when enabled. */
 #define PT_AOV_ALBEDO 1u
 #define PT_AOV_NORMAL 2u
@@ -65,9 +82,15 @@ typedef struct PtRenderParams {
   kd_u32 aov_mask;
   kd_u32 film_channels;
   kd_u32 sampler;       /* PT_SAMPLER_* (kernels/pt_rng.h) */
-  kd_u32 pad0;
+  kd_u32 env_width, env_height; /* KD_FEATURE_ENVIRONMENT: the map (kernels/pt_environment.h) */
+  float env_rotate_cos, env_rotate_sin;
+  /* Next-event estimation first picks a kind of light: emissive triangles, the environment or a
+   * punctual light, with these probabilities (punctual: the rest). */
+  float select_triangles, select_environment;
+  kd_u32 punctual_count;
+  kd_u32 pad0, pad1;
 } PtRenderParams;
-KD_STATIC_ASSERT(sizeof(PtRenderParams) == 144, "PtRenderParams is 144 bytes");
+KD_STATIC_ASSERT(sizeof(PtRenderParams) == 176, "PtRenderParams is 176 bytes");
 
 /* Bytes of one PtPath (kernels/pt_path.h, checked there): the host sizes wavefront buffers by it. */
 #define PT_PATH_BYTES 176

@@ -106,15 +106,7 @@ void point_in_triangle(const Scene& scene, Random& random, float out[3]) {
 
 std::vector<RayRecord> camera_rays(const Scene& scene, uint32_t width, uint32_t height) {
   const Bounds bounds = scene_bounds(scene);
-  Camera camera;
-  if (!scene.cameras.empty()) {
-    camera = scene.cameras.front();
-  } else {
-    double centre[3], radius;
-    bounding_sphere(bounds, centre, radius);
-    camera.target = {static_cast<float>(centre[0]), static_cast<float>(centre[1]), static_cast<float>(centre[2])};
-    camera.position = {camera.target.x, camera.target.y, static_cast<float>(centre[2] + 2.5 * radius)};
-  }
+  const Camera camera = scene.cameras.empty() ? default_camera(bounds) : scene.cameras.front();
   const Direction forward = normalized(camera.target.x - camera.position.x, camera.target.y - camera.position.y,
                                        camera.target.z - camera.position.z);
   Direction right = normalized(forward.y * camera.up.z - forward.z * camera.up.y,

@@ -31,6 +31,23 @@ cl::Buffer upload_vector(cl::Runtime& runtime, const std::vector<T>& values) {
   return runtime.buffer(values.size() * sizeof(T), values.data());
 }
 
+PtPunctual device_punctual(const Light& light) {
+  PtPunctual p{};
+  p.type = light.type == LightType::Point ? PT_PUNCTUAL_POINT
+           : light.type == LightType::Spot ? PT_PUNCTUAL_SPOT
+                                           : PT_PUNCTUAL_DIRECTIONAL;
+  const Vec3* vectors[3] = {&light.position, &light.direction, &light.color};
+  float* out[3] = {p.position, p.direction, p.power};
+  for (int k = 0; k < 3; ++k) {
+    out[k][0] = vectors[k]->x;
+    out[k][1] = vectors[k]->y;
+    out[k][2] = vectors[k]->z;
+  }
+  p.cos_inner = std::cos(light.inner_cone_radians);
+  p.cos_outer = std::cos(light.outer_cone_radians);
+  return p;
+}
+
 }  // namespace
 
 DeviceGeometry upload_geometry(cl::Runtime& runtime, const Scene& scene, const KdTree& tree) {
@@ -49,7 +66,8 @@ DeviceGeometry upload_geometry(cl::Runtime& runtime, const Scene& scene, const K
   return geometry;
 }
 
-DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree& tree) {
+DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree& tree,
+                         const Environment* environment) {
   DeviceScene device;
   device.geometry = upload_geometry(runtime, scene, tree);
   device.material_ids = upload_vector(runtime, scene.material_ids);
@@ -101,13 +119,32 @@ DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree&
   device.light_count = static_cast<uint32_t>(lights.size());
   device.light_area_pdf_scale = total > 0 ? static_cast<float>(1.0 / total) : 0.0f;
   device.lights = upload_vector(runtime, lights);
+
+  std::vector<float> env_texels;  // RGBA per pixel, strength applied
+  std::vector<float> env_cdf;
+  if (environment) {
+    env_texels.resize(environment->rgb.size() / 3 * 4);
+    for (size_t i = 0, n = environment->rgb.size() / 3; i < n; ++i) {
+      for (int c = 0; c < 3; ++c) env_texels[4 * i + c] = environment->rgb[3 * i + c] * environment->strength;
+      env_texels[4 * i + 3] = 0;
+    }
+    env_cdf = environment_sampling_table(*environment);
+  }
+  device.env_texels = upload_vector(runtime, env_texels);
+  device.env_cdf = upload_vector(runtime, env_cdf);
+
+  std::vector<PtPunctual> punctuals;
+  for (const Light& light : scene.lights) punctuals.push_back(device_punctual(light));
+  device.punctual_count = static_cast<uint32_t>(punctuals.size());
+  device.punctuals = upload_vector(runtime, punctuals);
   return device;
 }
 
 cl_uint bind_scene_args(cl_kernel kernel, const DeviceScene& scene, const cl::Buffer& params) {
   const cl::Buffer* buffers[] = {&scene.geometry.nodes, &scene.geometry.leaf_triangles,
                                  &scene.geometry.triangle_vertices, &scene.geometry.indices, &scene.material_ids, &scene.materials, &scene.normals,
-                                 &scene.uvs, &scene.textures, &scene.texels, &scene.lights, &params};
+                                 &scene.uvs, &scene.textures, &scene.texels, &scene.lights,
+                                 &scene.env_texels, &scene.env_cdf, &scene.punctuals, &params};
   cl_uint index = 0;
   for (const cl::Buffer* buffer : buffers) cl::set_arg(kernel, index++, *buffer);
   return index;

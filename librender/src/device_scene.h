@@ -4,6 +4,7 @@
 
 #include "opencl_runtime.h"
 
+#include <kdray/environment.h>
 #include <kdray/kdtree.h>
 #include <kdray/scene.h>
 
@@ -19,12 +20,17 @@ struct DeviceGeometry {
 struct DeviceScene {
   DeviceGeometry geometry;
   cl::Buffer material_ids, materials, normals, uvs, textures, texels, lights;
+  cl::Buffer env_texels, env_cdf;  // kernels/pt_environment.h
+  cl::Buffer punctuals;            // PtPunctual per Scene::lights entry
   uint32_t light_count = 0;
+  uint32_t punctual_count = 0;
   float light_area_pdf_scale = 0;  // 1 / sum(luminance(Le) * area)
 };
 
 DeviceGeometry upload_geometry(cl::Runtime& runtime, const Scene& scene, const KdTree& tree);
-DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree& tree);
+// environment may be null (then its buffers are empty).
+DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree& tree,
+                         const Environment* environment);
 
 // Binds the PT_SCENE_ARGS arguments (kernels/pt_kernel_args.h) of kernel, params last;
 // returns the index of the next argument.

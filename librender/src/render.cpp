@@ -85,11 +85,30 @@ uint64_t tree_content_hash(const KdTree& tree) {
   return hash;
 }
 
+// Next-event estimation picks each kind of light that gives light with the same probability.
+void set_light_selection(PtRenderParams& params, const DeviceScene& device, const Environment* environment) {
+  const bool triangles = device.light_count > 0;
+  const bool env = environment && environment_mean_luminance(*environment) > 0;
+  const bool punctual = device.punctual_count > 0;
+  const int kinds = int(triangles) + int(env) + int(punctual);
+  params.select_triangles = triangles ? 1.0f / float(kinds) : 0.0f;
+  params.select_environment = env ? 1.0f / float(kinds) : 0.0f;
+  params.punctual_count = device.punctual_count;
+  if (environment) {
+    params.env_width = environment->width;
+    params.env_height = environment->height;
+    const double angle = environment->rotate_degrees * 3.14159265358979323846 / 180.0;
+    params.env_rotate_cos = float(std::cos(angle));
+    params.env_rotate_sin = float(std::sin(angle));
+  }
+}
+
 }  // namespace
 
 Camera render_camera(const Scene& scene, const RenderSettings& settings) {
-  if (!settings.camera && scene.cameras.empty()) throw Error("", "the scene has no camera: give --cam-pos and --cam-target");
-  Camera camera = settings.camera ? *settings.camera : scene.cameras.front();
+  Camera camera = settings.camera         ? *settings.camera
+                  : scene.cameras.empty() ? default_camera(scene_bounds(scene))
+                                          : scene.cameras.front();
   Vec3 forward = sub(camera.target, camera.position);
   if (!finite(camera.position) || !finite(camera.target) || !finite(camera.up) || !(length(forward) > 0) ||
       !(length(cross(forward, camera.up)) > 0)) {
@@ -101,7 +120,15 @@ Camera render_camera(const Scene& scene, const RenderSettings& settings) {
   return camera;
 }
 
-std::string kernel_feature_options(const Scene& scene, const DeviceSelection& device) {
+std::shared_ptr<const Environment> render_environment(const Scene& scene, const RenderSettings& settings) {
+  if (settings.environment) return settings.environment;
+  if (!settings.default_light || !scene.emissive_triangles.empty() || !scene.lights.empty()) return nullptr;
+  static const std::shared_ptr<const Environment> white = std::make_shared<const Environment>(
+      uniform_environment({kDefaultLightRadiance, kDefaultLightRadiance, kDefaultLightRadiance}));
+  return white;
+}
+
+std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device) {
   bool mirror = false, glossy = false, glass = false, textures = false, emission = false;
   for (const Material& m : scene.materials) {
     mirror |= m.type == MaterialType::Mirror;
@@ -117,6 +144,9 @@ std::string kernel_feature_options(const Scene& scene, const DeviceSelection& de
   if (glass) options += " -DKD_FEATURE_GLASS";
   if (textures) options += " -DKD_FEATURE_TEXTURES";
   if (!scene.normals.empty()) options += " -DKD_FEATURE_NORMALS";
+  if (render_environment(scene, settings)) options += " -DKD_FEATURE_ENVIRONMENT";
+  if (!scene.lights.empty()) options += " -DKD_FEATURE_PUNCTUAL";
+  if (!settings.mis) options += " -DKD_MIS_OFF";
   if (device.short_stack_size) options += " -DKD_SHORT_STACK_SIZE=" + std::to_string(device.short_stack_size);
   return options;
 }
@@ -147,14 +177,16 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settin
   RenderStats stats;
   cl::Runtime& runtime = cl::runtime_for(device);
   stats.device = runtime.info().name;
-  stats.kernel_options = kernel_feature_options(scene, device);
+  stats.kernel_options = kernel_feature_options(scene, settings, device);
+  const std::shared_ptr<const Environment> environment = render_environment(scene, settings);
+  stats.default_light = environment && !settings.environment;
   const bool wavefront = settings.form == RenderForm::Wavefront;
   cl::ProgramBuild build = runtime.program(wavefront ? "pt_wavefront.cl" : "pt_megakernel.cl", stats.kernel_options);
   stats.build_seconds = build.seconds;
   stats.build_source = build.source;
 
   auto upload_start = Clock::now();
-  RenderJob job{runtime, upload_scene(runtime, scene, tree), PtRenderParams{}, {}, {}, {}, {}, build.program, 0, 0};
+  RenderJob job{runtime, upload_scene(runtime, scene, tree, environment.get()), PtRenderParams{}, {}, {}, {}, {}, build.program, 0, 0};
   PtRenderParams& params = job.params;
   set_camera(params, camera, settings.width, settings.height);
   for (int axis = 0; axis < 3; ++axis) {
@@ -170,6 +202,7 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settin
   params.sampler = static_cast<uint32_t>(settings.sampler);
   params.light_count = job.scene.light_count;
   params.light_area_pdf_scale = job.scene.light_area_pdf_scale;
+  set_light_selection(params, job.scene, environment.get());
   params.aov_mask = (settings.aov_albedo ? PT_AOV_ALBEDO : 0) | (settings.aov_normal ? PT_AOV_NORMAL : 0) |
                     (settings.aov_depth ? PT_AOV_DEPTH : 0);
   params.film_channels = film_channel_count(settings);

@@ -75,21 +75,6 @@ void select_camera(Scene& scene, const std::string& path, const std::string& wan
 
 }  // namespace
 
-Camera default_camera(const Bounds& bounds) {
-  Camera camera;
-  camera.name = "default";
-  const Vec3 center{(bounds.min.x + bounds.max.x) / 2, (bounds.min.y + bounds.max.y) / 2, (bounds.min.z + bounds.max.z) / 2};
-  const double dx = double(bounds.max.x) - bounds.min.x, dy = double(bounds.max.y) - bounds.min.y,
-               dz = double(bounds.max.z) - bounds.min.z;
-  const double radius = std::max(0.5 * std::sqrt(dx * dx + dy * dy + dz * dz), 1e-3);
-  const double half_fov = camera.vertical_fov_degrees * M_PI / 360.0;
-  const double distance = radius / std::sin(half_fov);
-  camera.target = center;
-  camera.position = {center.x, center.y, float(double(center.z) + distance)};
-  camera.up = {0, 1, 0};
-  return camera;
-}
-
 Scene import_scene(const std::string& path, const ImportOptions& options) {
   check_readable(path);
   if (!(options.scale > 0) || !std::isfinite(options.scale)) throw Error("", "the scale must be a positive number");

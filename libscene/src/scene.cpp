@@ -21,6 +21,30 @@ const char* material_type_name(MaterialType type) {
   return "unknown";
 }
 
+const char* light_type_name(LightType type) {
+  switch (type) {
+    case LightType::Point: return "point";
+    case LightType::Spot: return "spot";
+    case LightType::Directional: return "directional";
+  }
+  return "unknown";
+}
+
+Camera default_camera(const Bounds& bounds) {
+  Camera camera;
+  camera.name = "default";
+  const Vec3 center{(bounds.min.x + bounds.max.x) / 2, (bounds.min.y + bounds.max.y) / 2, (bounds.min.z + bounds.max.z) / 2};
+  const double dx = double(bounds.max.x) - bounds.min.x, dy = double(bounds.max.y) - bounds.min.y,
+               dz = double(bounds.max.z) - bounds.min.z;
+  const double radius = std::max(0.5 * std::sqrt(dx * dx + dy * dy + dz * dz), 1e-3);
+  const double half_fov = camera.vertical_fov_degrees * M_PI / 360.0;
+  const double distance = radius / std::sin(half_fov);
+  camera.target = center;
+  camera.position = {center.x, center.y, float(double(center.z) + distance)};
+  camera.up = {0, 1, 0};
+  return camera;
+}
+
 Bounds scene_bounds(const Scene& scene) {
   if (scene.positions.empty()) return {};
   Bounds bounds{scene.positions[0], scene.positions[0]};

@@ -43,13 +43,15 @@ Scene* FeatureRoom::scene_ = nullptr;
 KdTree* FeatureRoom::tree_ = nullptr;
 
 TEST_F(FeatureRoom, CompilesEveryFeatureAndOnlyThose) {
-  std::string options = kernel_feature_options(*scene_, {});
+  std::string options = kernel_feature_options(*scene_, {}, {});
   for (const char* feature : {"EMISSION", "MIRROR", "GLOSSY", "GLASS", "TEXTURES", "NORMALS"}) {
     EXPECT_NE(options.find(std::string("-DKD_FEATURE_") + feature), std::string::npos) << feature;
   }
   Material diffuse;
   Scene plain = test::make_inward_cube(diffuse);
-  EXPECT_EQ(kernel_feature_options(plain, {}).find("KD_FEATURE"), std::string::npos);
+  RenderSettings unlit;
+  unlit.default_light = false;
+  EXPECT_EQ(kernel_feature_options(plain, unlit, {}).find("KD_FEATURE"), std::string::npos);
 }
 
 TEST_F(FeatureRoom, RendersFiniteLitImage) {

@@ -80,15 +80,5 @@ TEST(DirectEmitter, BackFacesOfEmittersDoNotEmit) {
   EXPECT_EQ(film.mean_radiance(), 0.0);
 }
 
-TEST(EmptyScene, RendersBlackWithoutNaN) {
-  Scene scene;
-  scene.cameras.push_back(Camera{});
-  KdTree tree = test::tree_for(scene);
-  RenderStats stats;
-  Film film = render(scene, tree, test::tiny_settings(8, 2), DeviceSelection{}, &stats);
-  EXPECT_EQ(film.mean_radiance(), 0.0);
-  EXPECT_EQ(stats.nonfinite_values, 0u);
-}
-
 }  // namespace
 }  // namespace kdray

@@ -1,6 +1,7 @@
 // Rendering a scene with its k-d tree on an OpenCL device: settings, statistics, the call.
 #pragma once
 
+#include <kdray/environment.h>
 #include <kdray/film.h>
 #include <kdray/kdtree.h>
 #include <kdray/opencl_device.h>
@@ -8,6 +9,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,7 +33,13 @@ struct RenderSettings {
   uint32_t seed = 0;
   uint32_t max_bounces = kDefaultMaxBounces;  // as Cycles counts: 0 is direct light only
   Sampler sampler = Sampler::Sobol;
-  std::optional<Camera> camera;   // default: the scene's first camera
+  std::optional<Camera> camera;   // default: the scene's first camera, else default_camera()
+  // Lights rays that leave the scene (camera rays too); none by default.
+  std::shared_ptr<const Environment> environment;
+  // A scene with no emitter, no punctual light and no environment is lit by a uniform white
+  // environment of radiance 1 (default_light_radiance) rather than rendering black.
+  bool default_light = true;
+  bool mis = true;  // test switch: false gives light samples full weight (same expectation, more noise)
   bool aov_albedo = false, aov_normal = false, aov_depth = false;
   double time_limit_seconds = 0;  // > 0: stop after the last whole pass within the limit
   RenderForm form = RenderForm::Megakernel;
@@ -47,7 +55,14 @@ struct RenderStats {
   uint32_t samples_rendered = 0;  // per pixel; below spp only when the time limit stopped it
   uint64_t rays = 0;              // closest-hit and shadow rays traced
   uint64_t nonfinite_values = 0;  // NaN/Inf sample values (counted as 0); should stay 0
+  bool default_light = false;     // the scene had no light and the default environment lit it
 };
+
+constexpr float kDefaultLightRadiance = 1.0f;
+
+// The environment a render uses: settings.environment, else the default light when the scene
+// has no light of its own and settings.default_light is on, else none.
+std::shared_ptr<const Environment> render_environment(const Scene& scene, const RenderSettings& settings);
 
 // Called after each pass with the samples per pixel done so far and the total asked for.
 using RenderProgress = std::function<void(uint32_t done, uint32_t total)>;
@@ -58,9 +73,9 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settin
 
 // The OpenCL build options (feature defines) for a scene: only what it uses, so a diffuse-only
 // scene compiles a diffuse-only kernel.
-std::string kernel_feature_options(const Scene& scene, const DeviceSelection& device);
+std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device);
 
-// The camera from settings or the scene, checked (finite, non-degenerate, 0 < fov < 180).
+// The camera from settings, the scene or default_camera(scene bounds), checked (finite, non-degenerate, 0 < fov < 180).
 Camera render_camera(const Scene& scene, const RenderSettings& settings);
 
 }  // namespace kdray

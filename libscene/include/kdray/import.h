@@ -18,10 +18,6 @@ struct ImportOptions {
   std::string camera;  // name or index of the asset camera to put first; empty: the asset's first
 };
 
-// The camera used when the asset has none: on the +Z side of the bounding box's centre,
-// looking down -Z with +Y up, far enough that the bounding sphere fills the vertical field of view.
-Camera default_camera(const Bounds& bounds);
-
 // Throws kdray::Error naming `path` when the file cannot be read or holds no triangles.
 Scene import_scene(const std::string& path, const ImportOptions& options);
 

@@ -52,6 +52,24 @@ struct Camera {
   float vertical_fov_degrees = 45.0f;
 };
 
+// Punctual lights, as Assimp reads them (glTF KHR_lights_punctual, FBX, Collada, ...). Units as
+// glTF viewers take them, without a 683 lm/W factor: `color` (the light's colour times its
+// intensity) is an intensity in W/sr for point and spot lights and an irradiance in W/m^2 for
+// directional ones.
+enum class LightType : uint32_t { Point = 0, Spot = 1, Directional = 2 };
+
+const char* light_type_name(LightType type);
+
+struct Light {
+  std::string name;
+  LightType type = LightType::Point;
+  Vec3 position{0, 0, 0};    // world space (point, spot)
+  Vec3 direction{0, 0, -1};  // world space, unit: the way the light shines (spot, directional)
+  Vec3 color{1, 1, 1};
+  float inner_cone_radians = 0;  // spot: half-angle of full intensity
+  float outer_cone_radians = 0;  // spot: half-angle beyond which there is no light
+};
+
 // What the importer dropped or ignored, so summaries can say so.
 struct ImportStats {
   std::string source_file;
@@ -79,6 +97,7 @@ struct Scene {
   std::vector<Texture> textures;
   std::vector<Camera> cameras;         // at least one after import (a default framing camera)
   std::vector<uint32_t> emissive_triangles;  // triangles whose material emits
+  std::vector<Light> lights;           // punctual lights, or empty
   ImportStats import_stats;
   uint64_t content_hash = 0;           // set by compute_content_hash / on load
 
@@ -87,7 +106,12 @@ struct Scene {
 
 Bounds scene_bounds(const Scene& scene);
 
-// 64-bit XXH3 over geometry, materials, textures and cameras: what a tree or image was made from.
+// The camera for a scene that has none (every tool uses this one): on the +Z side of the
+// bounding box's centre, looking down -Z with +Y up, far enough that the bounding sphere fills
+// the vertical field of view.
+Camera default_camera(const Bounds& bounds);
+
+// 64-bit XXH3 over geometry, materials, textures, cameras and lights: what a tree or image was made from.
 uint64_t compute_content_hash(const Scene& scene);
 
 }  // namespace kdray

@@ -1,0 +1,94 @@
+/* Lights other than emissive triangles, as next-event estimation samples them, and the MIS
+ * weights every light strategy uses. The environment (KD_FEATURE_ENVIRONMENT) and punctual lights
+ * (KD_FEATURE_PUNCTUAL) are compiled only into kernels for scenes that have them.
+ * OpenCL C only. */
+#ifndef PT_LIGHTS_H
+#define PT_LIGHTS_H
+
+#include "pt_environment.h"
+#include "pt_sampling.h"
+#include "pt_types.h"
+
+/* Weights of a light sample and of a BSDF sample that found a light, given both strategies'
+ * solid-angle densities. KD_MIS_OFF (a test switch) keeps the estimator unbiased without MIS:
+ * light samples count in full, BSDF samples only where light sampling cannot reach. */
+#ifdef KD_MIS_OFF
+inline float pt_mis_light(float light_pdf, float bsdf_pdf) { return 1.0f; }
+inline float pt_mis_bsdf(float bsdf_pdf, float light_pdf) { return light_pdf > 0.0f ? 0.0f : 1.0f; }
+#else
+inline float pt_mis_light(float light_pdf, float bsdf_pdf) { return pt_power_heuristic(light_pdf, bsdf_pdf); }
+inline float pt_mis_bsdf(float bsdf_pdf, float light_pdf) { return pt_power_heuristic(bsdf_pdf, light_pdf); }
+#endif
+
+/* Probability that next-event estimation samples the emissive triangles. */
+#if defined(KD_FEATURE_ENVIRONMENT) || defined(KD_FEATURE_PUNCTUAL)
+#define PT_SELECT_TRIANGLES(params) ((params)->select_triangles)
+#else
+#define PT_SELECT_TRIANGLES(params) 1.0f
+#endif
+
+/* A sampled direction towards a light: unoccluded up to `distance`, it brings `value` (radiance
+ * or intensity over the sampling density, light choice included); pdf is the solid-angle density
+ * for MIS, 0 for delta lights. */
+typedef struct PtLightSample {
+  float3 wi;
+  float distance;
+  float3 value;
+  float pdf;
+} PtLightSample;
+
+/* Distance that takes a shadow ray from p out of the scene's bounds. */
+inline float pt_escape_distance(__global const PtRenderParams* params, float3 p) {
+  float3 lo = vload3(0, params->bounds_min), hi = vload3(0, params->bounds_max);
+  return 1.01f * (length(p - 0.5f * (lo + hi)) + 0.5f * length(hi - lo)) + 1.0f;
+}
+
+#ifdef KD_FEATURE_ENVIRONMENT
+inline PtLightSample pt_env_sample_light(__global const float4* texels, __global const float* cdf,
+                                         __global const PtRenderParams* params, float3 p, float2 u2d) {
+  PtLightSample s;
+  float u, v;
+  float pdf_uv = pt_env_sample_uv(cdf, params->env_width, params->env_height, u2d.x, u2d.y, &u, &v);
+  float2 uv = (float2)(u, v);
+  float sin_theta;
+  s.wi = pt_env_direction(params, uv, &sin_theta);
+  s.pdf = params->select_environment * pdf_uv / (2.0f * PT_PI * PT_PI * sin_theta);
+  s.distance = pt_escape_distance(params, p);
+  s.value = s.pdf > 0.0f ? pt_env_lookup(texels, params, uv) / s.pdf : (float3)(0.0f);
+  return s;
+}
+#endif
+
+#ifdef KD_FEATURE_PUNCTUAL
+/* One of the punctual lights, chosen uniformly with u. */
+inline PtLightSample pt_punctual_sample_light(__global const PtPunctual* lights, __global const PtRenderParams* params,
+                                              float3 p, float u) {
+  uint count = params->punctual_count;
+  PtPunctual light = lights[min((uint)(u * (float)count), count - 1)];
+  float select = (1.0f - params->select_triangles - params->select_environment) / (float)count;
+  float3 power = vload3(0, light.power) / select;
+  float3 direction = vload3(0, light.direction);
+  PtLightSample s;
+  s.pdf = 0.0f;
+  if (light.type == PT_PUNCTUAL_DIRECTIONAL) {
+    s.wi = -direction;
+    s.distance = pt_escape_distance(params, p);
+    s.value = power;
+    return s;
+  }
+  float3 to_light = vload3(0, light.position) - p;
+  float dist2 = dot(to_light, to_light);
+  s.distance = sqrt(dist2);
+  s.wi = to_light / s.distance;
+  s.value = dist2 > 0.0f ? power / dist2 : (float3)(0.0f);
+  if (light.type == PT_PUNCTUAL_SPOT) {
+    /* KHR_lights_punctual's falloff: the square of a linear ramp in cos between the cones. */
+    float ramp = (dot(direction, -s.wi) - light.cos_outer) / fmax(light.cos_inner - light.cos_outer, 1e-3f);
+    ramp = clamp(ramp, 0.0f, 1.0f);
+    s.value *= ramp * ramp;
+  }
+  return s;
+}
+#endif
+
+#endif /* PT_LIGHTS_H */

@@ -1,0 +1,110 @@
+// Environment maps: loading through OpenImageIO and the sampling table (see environment.h).
+#include <kdray/environment.h>
+#include <kdray/error.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <memory>
+
+namespace kdray {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Large enough for 16k x 8k maps, small enough that a hostile header cannot ask for 100 GB.
+constexpr uint64_t kMaxEnvironmentPixels = uint64_t(1) << 28;
+
+// Matches pt_luminance in kernels/pt_sampling.h.
+double luminance(const float* rgb) { return (double(rgb[0]) + rgb[1] + rgb[2]) / 3.0; }
+
+}  // namespace
+
+Environment load_environment(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw Error(path, "cannot read the environment image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1) {
+    throw Error(path, "not a 2D image");
+  }
+  const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
+  if (pixels > kMaxEnvironmentPixels) {
+    throw Error(path, "environment image of " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                          " pixels is too large");
+  }
+  Environment env;
+  env.source = path;
+  env.width = uint32_t(spec.width);
+  env.height = uint32_t(spec.height);
+  const int channels = spec.nchannels >= 3 ? 3 : 1;
+  std::vector<float> read(pixels * channels);
+  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, read.data())) {
+    throw Error(path, "cannot read the environment image: " + in->geterror());
+  }
+  in->close();
+  env.rgb.resize(pixels * 3);
+  for (uint64_t i = 0; i < pixels; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      float value = read[i * channels + (channels == 3 ? c : 0)];
+      env.rgb[i * 3 + c] = std::isfinite(value) && value > 0 ? value : 0.0f;  // radiance is finite, >= 0
+    }
+  }
+  return env;
+}
+
+Environment uniform_environment(const Vec3& color) {
+  // A small grid rather than one pixel, so that the sampling table still follows sin(theta).
+  Environment env;
+  env.source = "uniform";
+  env.width = 32;
+  env.height = 16;
+  env.rgb.resize(size_t(env.width) * env.height * 3);
+  for (size_t i = 0; i < env.rgb.size(); i += 3) {
+    env.rgb[i] = color.x;
+    env.rgb[i + 1] = color.y;
+    env.rgb[i + 2] = color.z;
+  }
+  return env;
+}
+
+std::vector<float> environment_sampling_table(const Environment& env) {
+  const uint32_t w = env.width, h = env.height;
+  std::vector<float> table(size_t(w) * h + h);
+  std::vector<double> row_sums(h);
+  std::vector<double> row(w);
+  double total = 0;
+  for (uint32_t j = 0; j < h; ++j) {
+    const double sin_theta = std::sin(kPi * (j + 0.5) / h);
+    double sum = 0;
+    for (uint32_t i = 0; i < w; ++i) {
+      sum += luminance(&env.rgb[(size_t(j) * w + i) * 3]) * sin_theta;
+      row[i] = sum;
+    }
+    for (uint32_t i = 0; i < w; ++i) {
+      table[size_t(j) * w + i] = sum > 0 ? float(row[i] / sum) : float(double(i + 1) / w);
+    }
+    table[size_t(j) * w + w - 1] = 1.0f;
+    row_sums[j] = sum;
+    total += sum;
+  }
+  float* marginal = table.data() + size_t(w) * h;
+  double running = 0;
+  for (uint32_t j = 0; j < h; ++j) {
+    running += total > 0 ? row_sums[j] : std::sin(kPi * (j + 0.5) / h);
+    marginal[j] = float(running);
+  }
+  for (uint32_t j = 0; j < h; ++j) marginal[j] = float(marginal[j] / running);
+  marginal[h - 1] = 1.0f;
+  return table;
+}
+
+double environment_mean_luminance(const Environment& env) {
+  double weighted = 0, weights = 0;
+  for (uint32_t j = 0; j < env.height; ++j) {
+    const double sin_theta = std::sin(kPi * (j + 0.5) / env.height);
+    for (uint32_t i = 0; i < env.width; ++i) weighted += luminance(&env.rgb[(size_t(j) * env.width + i) * 3]) * sin_theta;
+    weights += sin_theta * env.width;
+  }
+  return weights > 0 ? env.strength * weighted / weights : 0.0;
+}
+
+}  // namespace kdray

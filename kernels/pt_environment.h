@@ -86,15 +86,15 @@ inline float3 pt_env_direction(__global const PtRenderParams* params, float2 uv,
   return (float3)(c * x + s * z, y, -s * x + c * z); /* R_y(angle) */
 }
 
-inline float3 pt_env_texel(__global const float4* texels, uint width, uint height, int x, int y) {
+inline float3 pt_env_texel(__global const float* texels, uint width, uint height, int x, int y) {
   x %= (int)width;
   x += x < 0 ? (int)width : 0;
   y = clamp(y, 0, (int)height - 1);
-  return texels[(uint)y * width + (uint)x].xyz;
+  return vload3((uint)y * width + (uint)x, texels);
 }
 
-/* Bilinear radiance at map coordinates (u, v). */
-inline float3 pt_env_lookup(__global const float4* texels, __global const PtRenderParams* params, float2 uv) {
+/* Bilinear radiance at map coordinates (u, v), strength applied. */
+inline float3 pt_env_lookup(__global const float* texels, __global const PtRenderParams* params, float2 uv) {
   uint w = params->env_width, h = params->env_height;
   float fx = uv.x * (float)w - 0.5f, fy = uv.y * (float)h - 0.5f;
   float x0 = floor(fx), y0 = floor(fy);
@@ -102,7 +102,7 @@ inline float3 pt_env_lookup(__global const float4* texels, __global const PtRend
   int ix = (int)x0, iy = (int)y0;
   float3 top = mix(pt_env_texel(texels, w, h, ix, iy), pt_env_texel(texels, w, h, ix + 1, iy), ax);
   float3 bottom = mix(pt_env_texel(texels, w, h, ix, iy + 1), pt_env_texel(texels, w, h, ix + 1, iy + 1), ax);
-  return mix(top, bottom, ay);
+  return params->env_strength * mix(top, bottom, ay);
 }
 
 /* Solid-angle density with which next-event estimation picks direction d (light choice included). */

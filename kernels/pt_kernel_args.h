@@ -13,7 +13,7 @@
       __global const kd_u32 *material_ids,                                                               \
       __global const PtMaterial *materials, __global const float *normals, __global const float *uvs,    \
       __global const PtTexture *textures, __global const float4 *texels, __global const PtLight *lights, \
-      __global const float4 *env_texels, __global const float *env_cdf, __global const PtPunctual *punctuals, \
+      __global const float *env_texels, __global const float *env_cdf, __global const PtPunctual *punctuals, \
       __global const PtRenderParams *params
 
 inline PtSceneData pt_make_scene(__global const KdNode* nodes, __global const kd_u32* leaf_triangles,
@@ -21,7 +21,7 @@ inline PtSceneData pt_make_scene(__global const KdNode* nodes, __global const kd
                                  __global const kd_u32* material_ids, __global const PtMaterial* materials,
                                  __global const float* normals, __global const float* uvs,
                                  __global const PtTexture* textures, __global const float4* texels,
-                                 __global const PtLight* lights, __global const float4* env_texels,
+                                 __global const PtLight* lights, __global const float* env_texels,
                                  __global const float* env_cdf, __global const PtPunctual* punctuals,
                                  __global const PtRenderParams* params) {
   PtSceneData scene;

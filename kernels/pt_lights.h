@@ -44,7 +44,7 @@ inline float pt_escape_distance(__global const PtRenderParams* params, float3 p)
 }
 
 #ifdef KD_FEATURE_ENVIRONMENT
-inline PtLightSample pt_env_sample_light(__global const float4* texels, __global const float* cdf,
+inline PtLightSample pt_env_sample_light(__global const float* texels, __global const float* cdf,
                                          __global const PtRenderParams* params, float3 p, float2 u2d) {
   PtLightSample s;
   float u, v;

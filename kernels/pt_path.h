@@ -27,7 +27,7 @@ typedef struct PtSceneData {
   __global const PtTexture* textures;
   __global const float4* texels;
   __global const PtLight* lights;
-  __global const float4* env_texels;   /* KD_FEATURE_ENVIRONMENT (kernels/pt_environment.h) */
+  __global const float* env_texels;    /* KD_FEATURE_ENVIRONMENT: RGB (kernels/pt_environment.h) */
   __global const float* env_cdf;
   __global const PtPunctual* punctuals; /* KD_FEATURE_PUNCTUAL */
 } PtSceneData;

@@ -88,7 +88,8 @@ typedef struct PtRenderParams {
    * punctual light, with these probabilities (punctual: the rest). */
   float select_triangles, select_environment;
   kd_u32 punctual_count;
-  kd_u32 pad0, pad1;
+  float env_strength;
+  kd_u32 pad0;
 } PtRenderParams;
 KD_STATIC_ASSERT(sizeof(PtRenderParams) == 176, "PtRenderParams is 176 bytes");
 

@@ -120,18 +120,8 @@ DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree&
   device.light_area_pdf_scale = total > 0 ? static_cast<float>(1.0 / total) : 0.0f;
   device.lights = upload_vector(runtime, lights);
 
-  std::vector<float> env_texels;  // RGBA per pixel, strength applied
-  std::vector<float> env_cdf;
-  if (environment) {
-    env_texels.resize(environment->rgb.size() / 3 * 4);
-    for (size_t i = 0, n = environment->rgb.size() / 3; i < n; ++i) {
-      for (int c = 0; c < 3; ++c) env_texels[4 * i + c] = environment->rgb[3 * i + c] * environment->strength;
-      env_texels[4 * i + 3] = 0;
-    }
-    env_cdf = environment_sampling_table(*environment);
-  }
-  device.env_texels = upload_vector(runtime, env_texels);
-  device.env_cdf = upload_vector(runtime, env_cdf);
+  device.env_texels = upload_vector(runtime, environment ? environment->rgb : std::vector<float>());
+  device.env_cdf = upload_vector(runtime, environment ? environment_sampling_table(*environment) : std::vector<float>());
 
   std::vector<PtPunctual> punctuals;
   for (const Light& light : scene.lights) punctuals.push_back(device_punctual(light));

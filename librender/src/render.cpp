@@ -100,6 +100,7 @@ void set_light_selection(PtRenderParams& params, const DeviceScene& device, cons
     const double angle = environment->rotate_degrees * 3.14159265358979323846 / 180.0;
     params.env_rotate_cos = float(std::cos(angle));
     params.env_rotate_sin = float(std::sin(angle));
+    params.env_strength = environment->strength;
   }
 }
 

@@ -15,9 +15,11 @@
 #include <tool_main.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 namespace {
@@ -50,6 +52,9 @@ struct Options {
   std::string sampler = kdray::sampler_name(kdray::Sampler::Sobol);
   std::string cam_pos, cam_target, cam_up;
   float fov = 0;
+  std::string env_image, env_color;
+  float env_strength = 1, env_rotate = 0;
+  bool no_default_light = false, no_mis = false;
   bool wavefront = false, json = false, quiet = false;
   kdray::RenderSettings settings;
   kdray::DeviceSelection device;
@@ -101,6 +106,26 @@ void add_options(CLI::App& app, Options& o) {
   app.add_option("--cam-up", o.cam_up, "Up direction X,Y,Z (default 0,1,0)")->group("Camera");
   app.add_option("--fov", o.fov, "Vertical field of view in degrees (default: the scene's camera)")->group("Camera");
 
+  app.add_option("--env", o.env_image,
+                 "Environment map: an equirectangular (lat-long) HDR image (EXR, HDR, ...), +Y up, "
+                 "mapped as Mitsuba 3's envmap (README.md)")
+      ->group("Lights");
+  app.add_option("--env-color", o.env_color, "A uniform environment of radiance R,G,B instead of a map")
+      ->group("Lights");
+  app.add_option("--env-strength", o.env_strength, "Multiplies the environment's radiance")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str()
+      ->group("Lights");
+  app.add_option("--env-rotate", o.env_rotate, "Turns the environment about +Y by DEGREES, counter-clockwise seen from above")
+      ->capture_default_str()
+      ->group("Lights");
+  app.add_flag("--no-default-light", o.no_default_light,
+               "Render a scene without any light black instead of under the default light (a uniform white "
+               "environment of radiance 1)")
+      ->group("Lights");
+  app.add_flag("--no-mis", o.no_mis, "Test switch: light samples at full weight, no multiple importance sampling")
+      ->group("Lights");
+
   app.add_option("--device", o.device.device, "auto (a GPU if present, else the CPU), cpu, gpu, an index, or list")
       ->capture_default_str()
       ->group("Device");
@@ -125,6 +150,33 @@ void apply_camera_options(Options& o) {
   if (!o.cam_up.empty()) camera.up = parse_vec3("--cam-up", o.cam_up);
   if (o.fov != 0) camera.vertical_fov_degrees = o.fov;
   o.settings.camera = camera;
+}
+
+void apply_lights(Options& o) {
+  if (!o.env_image.empty() && !o.env_color.empty()) throw UsageError("--env and --env-color exclude each other");
+  if (o.env_image.empty() && o.env_color.empty() && (o.env_strength != 1 || o.env_rotate != 0)) {
+    throw UsageError("--env-strength and --env-rotate need --env or --env-color");
+  }
+  if (!o.env_image.empty() || !o.env_color.empty()) {
+    kdray::Environment env;
+    if (!o.env_image.empty()) {
+      env = kdray::load_environment(o.env_image);
+    } else {
+      kdray::Vec3 color = parse_vec3("--env-color", o.env_color);
+      if (!(color.x >= 0 && color.y >= 0 && color.z >= 0) || !std::isfinite(color.x + color.y + color.z)) {
+        throw UsageError("--env-color needs finite values >= 0");
+      }
+      env = kdray::uniform_environment(color);
+    }
+    if (!std::isfinite(o.env_strength) || !std::isfinite(o.env_rotate)) {
+      throw UsageError("--env-strength and --env-rotate need finite values");
+    }
+    env.strength = o.env_strength;
+    env.rotate_degrees = o.env_rotate;
+    o.settings.environment = std::make_shared<const kdray::Environment>(std::move(env));
+  }
+  o.settings.default_light = !o.no_default_light;
+  o.settings.mis = !o.no_mis;
 }
 
 void apply_aovs(Options& o) {
@@ -177,11 +229,19 @@ int merge(const Options& o) {
 
 int render(Options& o) {
   auto load_start = Clock::now();
+  auto env_start = Clock::now();
+  apply_lights(o);
+  double env_seconds = seconds_since(env_start);
   kdray::Scene scene = kdray::read_scene(o.scene_path);
   kdray::KdTree tree = kdray::read_tree(o.tree_path);
   kdray::check_tree_matches_scene(tree, o.tree_path, scene, o.scene_path);
   double load_seconds = seconds_since(load_start);
 
+  if (kdray::render_environment(scene, o.settings) && !o.settings.environment) {
+    std::fprintf(stderr, "kdrender: warning: %s\n", (o.scene_path + ": the scene has no light (no emissive triangles, no punctual "
+                                           "lights) and no --env: lighting it with the default light, a uniform white "
+                                           "environment of radiance 1 (--no-default-light renders black)").c_str());
+  }
   kdrender::ProgressReport progress(!o.quiet && !o.json);
   kdray::RenderStats stats;
   kdray::Film film = kdray::render(scene, tree, o.settings, o.device, &stats,
@@ -208,6 +268,10 @@ int render(Options& o) {
                              {"sampler", kdray::sampler_name(film.sampler)},
                              {"kernel_options", stats.kernel_options},
                              {"load_seconds", load_seconds},
+                             {"environment", o.settings.environment ? o.settings.environment->source
+                                             : stats.default_light  ? "default"
+                                                                    : ""},
+                             {"environment_seconds", env_seconds},
                              {"build_seconds", stats.build_seconds},
                              {"build_source", stats.build_source},
                              {"upload_seconds", stats.upload_seconds},

@@ -47,6 +47,10 @@ void apply_orientation_and_scale(Scene& scene, const ImportOptions& options) {
     camera.target = place(camera.target);
     if (rotate) camera.up = to_y_up(camera.up);
   }
+  for (Light& light : scene.lights) {
+    light.position = place(light.position);
+    if (rotate) light.direction = to_y_up(light.direction);
+  }
 }
 
 void list_emissive_triangles(Scene& scene) {

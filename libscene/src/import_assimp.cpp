@@ -99,6 +99,7 @@ class AssimpConverter {
     }
     builder_.finish(scene_);
     convert_cameras();
+    convert_lights();
   }
 
  private:
@@ -190,6 +191,45 @@ class AssimpConverter {
       if (std::isfinite(vertical) && vertical > 0 && vertical < float(M_PI))
         converted.vertical_fov_degrees = vertical * float(180.0 / M_PI);
       scene_.cameras.push_back(converted);
+    }
+  }
+
+  // Point, spot and directional lights at their nodes. Assimp's glTF importer hands over the
+  // colour times the intensity (candela for point and spot lights, lux for directional ones: taken
+  // as W/sr and W/m^2) and stores the spot cone's half-angles, although aiLight documents full
+  // angles (checked with a KHR_lights_punctual file: innerConeAngle 0.2 reads 0.2). Other kinds
+  // (ambient, area) are reported and skipped.
+  void convert_lights() {
+    for (unsigned i = 0; i < source_.mNumLights; ++i) {
+      const aiLight& light = *source_.mLights[i];
+      Light converted;
+      converted.name = light.mName.C_Str();
+      switch (light.mType) {
+        case aiLightSource_POINT: converted.type = LightType::Point; break;
+        case aiLightSource_SPOT: converted.type = LightType::Spot; break;
+        case aiLightSource_DIRECTIONAL: converted.type = LightType::Directional; break;
+        default:
+          scene_.import_stats.warnings.push_back("light '" + converted.name + "' of a kind kdray does not render (" +
+                                                 std::to_string(int(light.mType)) + ") was skipped");
+          continue;
+      }
+      const aiNode* node = source_.mRootNode->FindNode(light.mName);
+      const aiMatrix4x4 transform = node ? global_transform(node) : aiMatrix4x4();
+      converted.position = to_vec3(transform * light.mPosition);
+      const aiVector3D direction = aiMatrix3x3(transform) * light.mDirection;
+      converted.direction = direction.Length() > 0 ? normalized(direction) : Vec3{0, 0, -1};
+      converted.color = {light.mColorDiffuse.r, light.mColorDiffuse.g, light.mColorDiffuse.b};
+      if (converted.type == LightType::Spot) {
+        converted.outer_cone_radians = std::clamp(light.mAngleOuterCone, 0.0f, float(M_PI));
+        converted.inner_cone_radians = std::clamp(light.mAngleInnerCone, 0.0f, converted.outer_cone_radians);
+      }
+      const Vec3& c = converted.color;
+      const Vec3& p = converted.position;
+      if (!(std::isfinite(p.x + p.y + p.z) && std::isfinite(c.x + c.y + c.z) && c.x >= 0 && c.y >= 0 && c.z >= 0)) {
+        scene_.import_stats.warnings.push_back("light '" + converted.name + "' with a non-finite or negative value was skipped");
+        continue;
+      }
+      scene_.lights.push_back(converted);
     }
   }
 

@@ -36,6 +36,15 @@ void put(OutputArchive& archive, const Camera& camera) {
   archive(camera.vertical_fov_degrees);
 }
 
+void put(OutputArchive& archive, const Light& light) {
+  put_string(archive, light.name);
+  archive(static_cast<uint32_t>(light.type));
+  put_vec3(archive, light.position);
+  put_vec3(archive, light.direction);
+  put_vec3(archive, light.color);
+  archive(light.inner_cone_radians, light.outer_cone_radians);
+}
+
 void put(OutputArchive& archive, const Texture& texture) {
   put_string(archive, texture.name);
   archive(texture.width, texture.height);
@@ -131,6 +140,21 @@ class Decoder {
 constexpr uint64_t kMinMaterialBytes = 8 + 4 + 24 + 4 + 4 + 4;
 constexpr uint64_t kMinCameraBytes = 8 + 36 + 4;
 constexpr uint64_t kMinTextureBytes = 8 + 8 + 8;
+constexpr uint64_t kMinLightBytes = 8 + 4 + 36 + 8;
+
+Light get_light(Decoder& decoder) {
+  Light light;
+  light.name = decoder.get_string();
+  uint32_t type = 0;
+  decoder.get(type);
+  if (type > static_cast<uint32_t>(LightType::Directional)) decoder.fail("unknown light type " + std::to_string(type));
+  light.type = static_cast<LightType>(type);
+  light.position = decoder.get_vec3();
+  light.direction = decoder.get_vec3();
+  light.color = decoder.get_vec3();
+  decoder.get(light.inner_cone_radians, light.outer_cone_radians);
+  return light;
+}
 
 Material get_material(Decoder& decoder) {
   Material material;
@@ -185,7 +209,13 @@ std::vector<T> decode_list(const std::string& path, const char* section, const s
 }  // namespace
 
 EncodedParts encode_parts(const Scene& scene) {
-  return {encode_materials(scene.materials), encode_textures(scene.textures), encode_cameras(scene.cameras)};
+  return {encode_materials(scene.materials), encode_textures(scene.textures), encode_cameras(scene.cameras),
+          encode_lights(scene.lights)};
+}
+
+std::string encode_lights(const std::vector<Light>& lights) { return encode_list(lights); }
+std::vector<Light> decode_lights(const std::string& path, const std::vector<char>& bytes) {
+  return decode_list<Light>(path, "lights", bytes, kMinLightBytes, get_light);
 }
 
 std::string encode_materials(const std::vector<Material>& materials) { return encode_list(materials); }

@@ -10,9 +10,9 @@
 
 namespace kdray::encoding {
 
-// The three structured parts that are content (they enter the content hash).
+// The structured parts that are content (they enter the content hash).
 struct EncodedParts {
-  std::string materials, textures, cameras;
+  std::string materials, textures, cameras, lights;
 };
 EncodedParts encode_parts(const Scene& scene);
 
@@ -22,6 +22,7 @@ uint64_t content_hash(const Scene& scene, const EncodedParts& parts);
 std::string encode_materials(const std::vector<Material>& materials);
 std::string encode_cameras(const std::vector<Camera>& cameras);
 std::string encode_textures(const std::vector<Texture>& textures);
+std::string encode_lights(const std::vector<Light>& lights);
 // Scene info: the content hash again (inside the checksummed payload, so a damaged header
 // hash is caught without recomputing it) and the import statistics.
 struct SceneInfo {
@@ -35,6 +36,7 @@ std::string encode_scene_info(const SceneInfo& info);
 std::vector<Material> decode_materials(const std::string& path, const std::vector<char>& bytes);
 std::vector<Camera> decode_cameras(const std::string& path, const std::vector<char>& bytes);
 std::vector<Texture> decode_textures(const std::string& path, const std::vector<char>& bytes);
+std::vector<Light> decode_lights(const std::string& path, const std::vector<char>& bytes);
 SceneInfo decode_scene_info(const std::string& path, const std::vector<char>& bytes);
 
 }  // namespace kdray::encoding

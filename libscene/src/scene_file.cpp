@@ -6,6 +6,7 @@
 #include "scene_encoding.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 namespace kdray {
@@ -13,7 +14,10 @@ namespace {
 
 using namespace format;
 
-constexpr uint64_t kKnownFlags = kSceneHasNormals | kSceneHasUVs | kSceneHasTextures | kSceneHasEmissive;
+constexpr uint64_t kKnownFlags =
+    kSceneHasNormals | kSceneHasUVs | kSceneHasTextures | kSceneHasEmissive | kSceneHasLights;
+
+bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 bool any_at_least(const std::vector<uint32_t>& values, uint64_t limit) {
   uint32_t largest = 0;
@@ -55,6 +59,15 @@ std::string first_inconsistency(const Scene& scene) {
     if (material.diffuse_texture < -1 || material.diffuse_texture >= int64_t(scene.textures.size()))
       return "material '" + material.name + "' refers to texture " + std::to_string(material.diffuse_texture) + " of " +
              std::to_string(scene.textures.size());
+  for (const Light& light : scene.lights) {
+    const float length2 = light.direction.x * light.direction.x + light.direction.y * light.direction.y +
+                          light.direction.z * light.direction.z;
+    if (!finite(light.position) || !finite(light.color) || !(std::abs(length2 - 1) < 1e-3f) ||
+        !(light.color.x >= 0 && light.color.y >= 0 && light.color.z >= 0) ||
+        !(light.inner_cone_radians >= 0 && light.inner_cone_radians <= light.outer_cone_radians &&
+          light.outer_cone_radians <= 3.14159265f))
+      return "light '" + light.name + "' is not finite, has no unit direction, a negative colour or bad cone angles";
+  }
   for (const Texture& texture : scene.textures)
     if (texture.rgba.size() != uint64_t(texture.width) * texture.height * 4)
       return "texture '" + texture.name + "' has the wrong pixel count";
@@ -67,6 +80,7 @@ uint64_t flags_of(const Scene& scene) {
   if (!scene.uvs.empty()) flags |= kSceneHasUVs;
   if (!scene.textures.empty()) flags |= kSceneHasTextures;
   if (!scene.emissive_triangles.empty()) flags |= kSceneHasEmissive;
+  if (!scene.lights.empty()) flags |= kSceneHasLights;
   return flags;
 }
 
@@ -98,13 +112,14 @@ class SectionCollector {
       case kSceneCameras: return sized(cameras, size, "cameras");
       case kSceneTextures: return sized(textures, size, "textures");
       case kSceneInfo: return sized(info, size, "scene info");
+      case kSceneLights: return sized(lights, size, "lights");
       default: return nullptr;
     }
   }
 
   bool has(uint32_t id) const { return seen_[id]; }
 
-  std::vector<char> materials, cameras, textures, info;
+  std::vector<char> materials, cameras, textures, info, lights;
 
  private:
   template <typename T>
@@ -123,7 +138,7 @@ class SectionCollector {
 
   std::string path_;
   Scene& scene_;
-  std::vector<bool> seen_ = std::vector<bool>(kSceneInfo + 1, false);
+  std::vector<bool> seen_ = std::vector<bool>(kSceneLights + 1, false);
 };
 
 }  // namespace
@@ -146,6 +161,7 @@ void write_scene(const std::string& path, const Scene& scene) {
   sections.push_back(text_section(kSceneCameras, parts.cameras));
   if (!scene.textures.empty()) sections.push_back(text_section(kSceneTextures, parts.textures));
   if (!scene.emissive_triangles.empty()) sections.push_back(array_section(kSceneEmissive, scene.emissive_triangles));
+  if (!scene.lights.empty()) sections.push_back(text_section(kSceneLights, parts.lights));
   sections.push_back(text_section(kSceneInfo, info));
 
   ContainerHeaderInfo header{kSceneMagic, kSceneVersion, flags_of(scene), content_hash};
@@ -165,7 +181,7 @@ Scene read_scene(const std::string& path) {
   if (flags & ~kKnownFlags) throw Error(path, "unknown flag bits in the header");
   const std::pair<uint64_t, uint32_t> optional_sections[] = {
       {kSceneHasNormals, kSceneNormals}, {kSceneHasUVs, kSceneUVs},
-      {kSceneHasTextures, kSceneTextures}, {kSceneHasEmissive, kSceneEmissive}};
+      {kSceneHasTextures, kSceneTextures}, {kSceneHasEmissive, kSceneEmissive}, {kSceneHasLights, kSceneLights}};
   for (const auto& [flag, section] : optional_sections)
     if (bool(flags & flag) != collector.has(section))
       throw Error(path, "header flags disagree with the sections present (section " + std::to_string(section) + ")");
@@ -173,6 +189,7 @@ Scene read_scene(const std::string& path) {
   scene.materials = encoding::decode_materials(path, collector.materials);
   scene.cameras = encoding::decode_cameras(path, collector.cameras);
   if (collector.has(kSceneTextures)) scene.textures = encoding::decode_textures(path, collector.textures);
+  if (collector.has(kSceneLights)) scene.lights = encoding::decode_lights(path, collector.lights);
   encoding::SceneInfo info = encoding::decode_scene_info(path, collector.info);
   scene.import_stats = std::move(info.import_stats);
 

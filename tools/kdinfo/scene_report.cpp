@@ -24,6 +24,7 @@ std::vector<std::string> optional_sections(uint64_t flags) {
   if (flags & kdray::format::kSceneHasUVs) names.push_back("uvs");
   if (flags & kdray::format::kSceneHasTextures) names.push_back("textures");
   if (flags & kdray::format::kSceneHasEmissive) names.push_back("emissive");
+  if (flags & kdray::format::kSceneHasLights) names.push_back("lights");
   return names;
 }
 
@@ -75,6 +76,17 @@ json scene_json(const Scene& scene) {
                        {"target", vec3_json(c.target)},
                        {"up", vec3_json(c.up)},
                        {"vertical_fov_degrees", c.vertical_fov_degrees}});
+  json punctual = json::array();
+  for (const kdray::Light& l : scene.lights) {
+    json light = {{"name", l.name}, {"type", kdray::light_type_name(l.type)}, {"color", vec3_json(l.color)}};
+    if (l.type != kdray::LightType::Directional) light["position"] = vec3_json(l.position);
+    if (l.type != kdray::LightType::Point) light["direction"] = vec3_json(l.direction);
+    if (l.type == kdray::LightType::Spot) {
+      light["inner_cone_degrees"] = l.inner_cone_radians * 180.0 / M_PI;
+      light["outer_cone_degrees"] = l.outer_cone_radians * 180.0 / M_PI;
+    }
+    punctual.push_back(light);
+  }
   return {
       {"triangles", scene.triangle_count()},
       {"vertices", scene.positions.size()},
@@ -84,6 +96,7 @@ json scene_json(const Scene& scene) {
       {"cameras", cameras},
       {"emissive_triangles", scene.emissive_triangles.size()},
       {"lights", lights_json(scene)},
+      {"punctual_lights", punctual},
       {"import",
        {{"source_file", stats.source_file},
         {"importer", stats.importer},
@@ -126,6 +139,23 @@ std::string scene_text(const json& j) {
     text += format("  %s: %llu triangles, area %g, emission (%g, %g, %g)\n", l["material"].get<std::string>().c_str(),
                    l["triangles"].get<unsigned long long>(), l["area"].get<double>(), l["emission"][0].get<double>(),
                    l["emission"][1].get<double>(), l["emission"][2].get<double>());
+  text += format("punctual   %zu (intensity W/sr for point and spot, irradiance W/m^2 for directional)\n",
+                 j["punctual_lights"].size());
+  for (const json& l : j["punctual_lights"]) {
+    text += format("  %-24s %-11s colour x intensity (%g, %g, %g)", l["name"].get<std::string>().c_str(),
+                   l["type"].get<std::string>().c_str(), l["color"][0].get<double>(), l["color"][1].get<double>(),
+                   l["color"][2].get<double>());
+    if (l.contains("position"))
+      text += format(" at (%g, %g, %g)", l["position"][0].get<double>(), l["position"][1].get<double>(),
+                     l["position"][2].get<double>());
+    if (l.contains("direction"))
+      text += format(" towards (%g, %g, %g)", l["direction"][0].get<double>(), l["direction"][1].get<double>(),
+                     l["direction"][2].get<double>());
+    if (l.contains("outer_cone_degrees"))
+      text += format(" cone %g..%g deg (half-angles)", l["inner_cone_degrees"].get<double>(),
+                     l["outer_cone_degrees"].get<double>());
+    text += "\n";
+  }
   text += format("cameras    %zu\n", j["cameras"].size());
   for (const json& c : j["cameras"])
     text += format("  %s at (%g, %g, %g) looking at (%g, %g, %g), vertical fov %g deg\n",

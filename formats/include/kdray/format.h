@@ -36,7 +36,8 @@ constexpr uint32_t kMaxSections = 64;
 
 // ---- .kdscene -------------------------------------------------------------------------
 constexpr char kSceneMagic[8] = {'K', 'D', 'S', 'C', 'E', 'N', 'E', '\0'};
-constexpr uint32_t kSceneVersion = 1;
+// Version 2 added punctual lights (kSceneLights); version 1 files are still read.
+constexpr uint32_t kSceneVersion = 2;
 
 enum SceneSection : uint32_t {
   kScenePositions = 1,       // float32 x,y,z per vertex
@@ -49,6 +50,7 @@ enum SceneSection : uint32_t {
   kSceneTextures = 8,        // optional: cereal portable binary: std::vector<Texture>
   kSceneEmissive = 9,        // optional: uint32 triangle index per emissive triangle
   kSceneInfo = 10,           // cereal portable binary: SceneInfo (source file, import statistics)
+  kSceneLights = 11,         // optional (version 2): cereal portable binary: std::vector<Light>
 };
 
 enum SceneFlags : uint64_t {
@@ -56,6 +58,7 @@ enum SceneFlags : uint64_t {
   kSceneHasUVs = 1u << 1,
   kSceneHasTextures = 1u << 2,
   kSceneHasEmissive = 1u << 3,
+  kSceneHasLights = 1u << 4,
 };
 
 // ---- .kdtree --------------------------------------------------------------------------

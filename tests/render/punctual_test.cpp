@@ -153,5 +153,40 @@ TEST(PunctualLights, ShareNextEventEstimationWithTheEnvironmentUnbiased) {
   EXPECT_NEAR(film.mean_radiance(), want, 0.03 * want);
 }
 
+TEST(PunctualLights, WavefrontAndMegakernelGiveTheSameImageWithEveryLightKind) {
+  // Emissive triangles, an environment map and a spot light: the same bytes from both forms.
+  Scene scene = floor_scene();
+  Material glow;
+  glow.type = MaterialType::Emissive;
+  glow.emission = {2, 2, 2};
+  scene.materials.push_back(glow);
+  const uint32_t base = uint32_t(scene.positions.size());
+  scene.positions.insert(scene.positions.end(), {{-0.2f, 1, -0.2f}, {0.2f, 1, -0.2f}, {0.2f, 1, 0.2f}, {-0.2f, 1, 0.2f}});
+  scene.indices.insert(scene.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  scene.material_ids.insert(scene.material_ids.end(), {1, 1});
+  scene.emissive_triangles = {2, 3};
+  Light spot;
+  spot.type = LightType::Spot;
+  spot.position = {0.3f, 0.5f, 0};
+  spot.direction = {0, -1, 0};
+  spot.outer_cone_radians = 0.6f;
+  spot.inner_cone_radians = 0.3f;
+  scene.lights.push_back(spot);
+  KdTree tree = test::tree_for(scene);
+  RenderSettings settings = test::tiny_settings(8, 4);
+  settings.camera = Camera{"", {0, 3, 3}, {0, 0, 0}, {0, 1, 0}, 60};
+  Environment env = uniform_environment({0.1f, 0.2f, 0.3f});
+  env.rotate_degrees = 30;
+  settings.environment = std::make_shared<const Environment>(env);
+  RenderStats stats;
+  Film mega = render(scene, tree, settings, DeviceSelection{}, &stats);
+  for (const char* feature : {"EMISSION", "ENVIRONMENT", "PUNCTUAL"})
+    EXPECT_NE(stats.kernel_options.find(std::string("KD_FEATURE_") + feature), std::string::npos) << feature;
+  settings.form = RenderForm::Wavefront;
+  Film wave = render(scene, tree, settings, DeviceSelection{});
+  EXPECT_EQ(wave.sums, mega.sums);
+  EXPECT_GT(mega.mean_radiance(), 0.1);
+}
+
 }  // namespace
 }  // namespace kdray

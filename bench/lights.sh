@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Light benchmarks (issue 11), medians of 5:
+#  1. environment map preparation: reading a 4096x2048 map (float EXR, half DWAB EXR, Radiance
+#     HDR, resized from a corpus map) and building its sampling table (environment_bench);
+#  2. the sample Cornell box (emissive triangles only) rendered by a baseline kdrender and this
+#     one, interleaved: the environment and punctual code must cost it nothing;
+#  3. an HDRI-lit mesh against Mitsuba 3 (llvm_ad_rgb, multijitter): channel means.
+# usage: bench/lights.sh BUILD_DIR [BASELINE_KDRENDER] [MITSUBA_PYTHON]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD=$(realpath "${1:-build}")
+BASELINE=${2:-}
+MITSUBA=${3:-/work/venv-mitsuba/bin/python}
+CORPUS=$(realpath ../shared/corpus)
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+KDCONVERT=$BUILD/tools/kdconvert/kdconvert
+KDBUILD=$BUILD/tools/kdbuild/kdbuild
+KDRENDER=$BUILD/tools/kdrender/kdrender
+median() { sort -g | awk '{v[NR]=$1} END {print v[int((NR+1)/2)]}'; }
+json_field() { /usr/bin/python3 -c "import json,sys; print(json.load(sys.stdin)['$1'])"; }
+
+echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), L3 $(lscpu | sed -n 's/^L3 cache: *//p'), $(date -u +%Y-%m-%d)"
+echo "load average: $(cut -d' ' -f1-3 /proc/loadavg)"
+
+echo "== 1. 4096x2048 environment maps"
+oiiotool "$CORPUS/hdri/courtyard.exr" --resize 4096x2048 -d float --compression zip -o "$WORK/map-float.exr"
+oiiotool "$CORPUS/hdri/courtyard.exr" --resize 4096x2048 -d half --compression dwab -o "$WORK/map-half.exr"
+oiiotool "$CORPUS/hdri/courtyard.exr" --resize 4096x2048 -o "$WORK/map.hdr"
+for map in map-float.exr map-half.exr map.hdr; do
+  echo "$map ($(du -h "$WORK/$map" | cut -f1)): $("$BUILD/tests/render/environment_bench" "$WORK/$map" 5)"
+done
+
+echo "== 2. Cornell box 256x256, 64 spp, 8 bounces: render_seconds, interleaved"
+"$KDCONVERT" samples/cornell-box.obj "$WORK/cornell.kdscene" > /dev/null
+"$KDBUILD" "$WORK/cornell.kdscene" "$WORK/cornell.kdtree" > /dev/null
+VIEW="--cam-pos 278,273,-800 --cam-target 278,273,0 --fov 39.3077 --width 256 --height 256 --spp 64"
+run() { "$1" "$WORK/$2.kdscene" "$WORK/cornell.kdtree" -o "$WORK/c.exr" $VIEW --json | json_field render_seconds; }
+if [ -n "$BASELINE" ]; then
+  # A version 2 scene without lights is a version 1 scene but for the version field (outside the
+  # checksum): the baseline reads this copy.
+  cp "$WORK/cornell.kdscene" "$WORK/cornell-v1.kdscene"
+  printf '\x01' | dd of="$WORK/cornell-v1.kdscene" bs=1 seek=8 conv=notrunc status=none
+  : > "$WORK/a"; : > "$WORK/b"
+  run "$BASELINE" cornell-v1 > /dev/null; run "$KDRENDER" cornell > /dev/null  # warm the program caches
+  for i in 1 2 3 4 5; do run "$BASELINE" cornell-v1 >> "$WORK/a"; run "$KDRENDER" cornell >> "$WORK/b"; done
+  echo "baseline $(median < "$WORK/a") s, this build $(median < "$WORK/b") s (runs: $(tr '\n' ' ' < "$WORK/a")| $(tr '\n' ' ' < "$WORK/b"))"
+fi
+"$KDRENDER" "$WORK/cornell.kdscene" "$WORK/cornell.kdtree" -o "$WORK/c.exr" $VIEW --spp 1 --json | json_field kernel_options
+
+echo "== 3. spot.obj under courtyard.exr, 128x128, 512 spp, 8 bounces: kdray vs Mitsuba 3"
+"$KDCONVERT" "$CORPUS/misc/spot.obj" "$WORK/spot.kdscene" > /dev/null
+"$KDBUILD" "$WORK/spot.kdscene" "$WORK/spot.kdtree" > /dev/null
+SPOT="--width 128 --height 128 --max-bounces 8 --spp 512 --cam-pos 0,0.108431,3.57155 --cam-target 0,0.108431,0.190046 --fov 45"
+"$KDRENDER" "$WORK/spot.kdscene" "$WORK/spot.kdtree" -o "$WORK/kd.exr" $SPOT --env "$CORPUS/hdri/courtyard.exr" --quiet
+if [ -x "$MITSUBA" ]; then
+  "$MITSUBA" /work/shared/yardsticks/mitsuba_render.py --obj "$CORPUS/misc/spot.obj" --out "$WORK/mi.exr" $SPOT \
+    --env "$CORPUS/hdri/courtyard.exr" --threads 2 --sampler multijitter > /dev/null
+  for image in kd mi; do echo "$image: $(oiiotool --stats "$WORK/$image.exr" | grep 'Stats Avg' | head -1)"; done
+  "$BUILD/tools/kdcompare/kdcompare" "$WORK/kd.exr" "$WORK/mi.exr" || true
+fi

@@ -46,7 +46,7 @@ if [ -n "$BASELINE" ]; then
   for i in 1 2 3 4 5; do run "$BASELINE" cornell-v1 >> "$WORK/a"; run "$KDRENDER" cornell >> "$WORK/b"; done
   echo "baseline $(median < "$WORK/a") s, this build $(median < "$WORK/b") s (runs: $(tr '\n' ' ' < "$WORK/a")| $(tr '\n' ' ' < "$WORK/b"))"
 fi
-"$KDRENDER" "$WORK/cornell.kdscene" "$WORK/cornell.kdtree" -o "$WORK/c.exr" $VIEW --spp 1 --json | json_field kernel_options
+echo "kernel options: $("$KDRENDER" "$WORK/cornell.kdscene" "$WORK/cornell.kdtree" -o "$WORK/c.exr" $VIEW --json | json_field kernel_options)"
 
 echo "== 3. spot.obj under courtyard.exr, 128x128, 512 spp, 8 bounces: kdray vs Mitsuba 3"
 "$KDCONVERT" "$CORPUS/misc/spot.obj" "$WORK/spot.kdscene" > /dev/null

@@ -192,9 +192,13 @@ TEST(DefaultLight, ASceneWithEmittersKeepsItsOwnLight) {
   light.emission = {1, 1, 1};
   Scene scene = test::make_inward_cube(light);
   EXPECT_EQ(render_environment(scene, RenderSettings{}), nullptr);
+  // ... and its kernel has no environment or punctual-light code at all.
+  const std::string options = kernel_feature_options(scene, RenderSettings{}, {});
+  EXPECT_EQ(options.find("KD_FEATURE_ENVIRONMENT"), std::string::npos);
+  EXPECT_EQ(options.find("KD_FEATURE_PUNCTUAL"), std::string::npos);
 }
 
-TEST(DefaultCamera, AScenewithoutCameraIsFramedByItsBounds) {
+TEST(DefaultCamera, ASceneWithoutCameraIsFramedByItsBounds) {
   Scene scene = test::make_sphere_scene(diffuse(0.5f));
   scene.cameras.clear();
   Camera camera = render_camera(scene, RenderSettings{});

@@ -25,8 +25,8 @@
  *                                         punctual); alpha (cut-out) test
  *     PT_DIM_ENV_U, PT_DIM_ENV_V          environment light sample
  *     pairs 5 to 7                        free for later techniques
- * The pairs marked for layered materials, light kinds, alpha and the environment are reserved:
- * nothing reads them yet. */
+ * Light kinds and the environment are read by pt_next_event_any (kernels/pt_path.h); the pairs
+ * marked for layered materials and alpha are reserved: nothing reads them yet. */
 #ifndef PT_RNG_H
 #define PT_RNG_H
 

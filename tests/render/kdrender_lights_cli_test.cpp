@@ -1,0 +1,86 @@
+// kdrender's light options: the default-light warning and --no-default-light, --env and its
+// companions, and their refusals (a missing map, options that need --env).
+#include "render_fixture.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+namespace kdray {
+namespace {
+
+namespace fs = std::filesystem;
+
+class KdrenderLights : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(test::make_temp_dir("kdrender-lights"));
+    // One unlit diffuse triangle, no camera: the default light and the default camera.
+    Scene scene;
+    scene.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+    scene.indices = {0, 1, 2};
+    scene.material_ids = {0};
+    scene.materials.push_back(Material{});
+    KdTree tree = test::tree_for(scene);
+    write_scene(path("unlit.kdscene"), scene);
+    write_tree(path("unlit.kdtree"), tree);
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+  static test::ToolRun kdrender(const std::string& arguments) {
+    return test::run_command(test::shell_quoted(test::tool_path("kdrender")) + " " +
+                             test::shell_quoted(path("unlit.kdscene")) + " " + test::shell_quoted(path("unlit.kdtree")) +
+                             " -o " + test::shell_quoted(path("out.exr")) + " --width 8 --height 8 --spp 1 --json " +
+                             arguments + " 2>&1");
+  }
+  static std::string path(const std::string& name) { return (*dir_ / name).string(); }
+  static fs::path* dir_;
+};
+fs::path* KdrenderLights::dir_ = nullptr;
+
+TEST_F(KdrenderLights, AnUnlitSceneWarnsAndGetsTheDefaultLight) {
+  test::ToolRun run = kdrender("");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("kdrender: warning: "), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("--no-default-light"), std::string::npos) << run.output;
+  const std::string json = run.output.substr(run.output.find('{'));
+  EXPECT_EQ(nlohmann::json::parse(json)["environment"], "default");
+  EXPECT_GT(nlohmann::json::parse(json)["mean_radiance"].get<double>(), 0.5);
+}
+
+TEST_F(KdrenderLights, NoDefaultLightRendersBlackWithoutWarning) {
+  test::ToolRun run = kdrender("--no-default-light");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.output.find("warning"), std::string::npos) << run.output;
+  EXPECT_EQ(nlohmann::json::parse(run.output)["mean_radiance"].get<double>(), 0.0);
+}
+
+TEST_F(KdrenderLights, EnvColorLightsTheSceneWithoutWarning) {
+  test::ToolRun run = kdrender("--env-color 0.5,0.5,0.5 --env-strength 2");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.output.find("warning"), std::string::npos) << run.output;
+  nlohmann::json report = nlohmann::json::parse(run.output);
+  EXPECT_EQ(report["environment"], "uniform");
+  EXPECT_NE(report["kernel_options"].get<std::string>().find("KD_FEATURE_ENVIRONMENT"), std::string::npos);
+}
+
+TEST_F(KdrenderLights, AMissingMapIsAnErrorNamingIt) {
+  test::ToolRun run = kdrender("--env " + test::shell_quoted(path("missing.exr")));
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("kdrender: error: "), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("missing.exr"), std::string::npos) << run.output;
+}
+
+TEST_F(KdrenderLights, InconsistentLightOptionsAreUsageErrors) {
+  EXPECT_EQ(kdrender("--env-strength 2").exit_code, 2);
+  EXPECT_EQ(kdrender("--env-rotate 30").exit_code, 2);
+  EXPECT_EQ(kdrender("--env a.exr --env-color 1,1,1").exit_code, 2);
+  EXPECT_EQ(kdrender("--env-color 1,1").exit_code, 2);
+  EXPECT_EQ(kdrender("--env-color=-1,0,0").exit_code, 2);
+}
+
+}  // namespace
+}  // namespace kdray

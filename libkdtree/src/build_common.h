@@ -139,6 +139,22 @@ struct Subtree {
   void append(const Subtree& other);
 };
 
+// Nodes of at most this many triangles are built by build_small_subtree.
+constexpr size_t kSmallNodeTriangles = 32;
+
+struct SmallBuildParameters {
+  CostModel cost;
+  uint32_t max_depth;
+  bool perfect_splits;
+};
+
+// Builds the subtree of a node of at most kSmallNodeTriangles triangles (`triangles`, with
+// the sorted events of each axis) into `out`, in fixed-size per-thread storage. It builds the
+// tree the general event builder would build from the same node.
+void build_small_subtree(const Scene& scene, const SmallBuildParameters& parameters, const Box3& voxel,
+                         uint32_t depth, const uint32_t* triangles, size_t count, const Event* const events[3],
+                         const size_t event_counts[3], Subtree& out);
+
 // Throws kdray::Error for settings out of range.
 void validate_settings(const BuildSettings& settings);
 

@@ -150,6 +150,7 @@ class EventBuilder {
         settings_(settings),
         cost_(cost_model_of(settings)),
         max_depth_(settings.resolved_max_depth(triangle_count)),
+        small_parameters_{cost_, max_depth_, settings.perfect_splits},
         control_(control) {}
 
   // Builds the subtree of `work` into `out`. Nodes with many triangles build their children
@@ -202,6 +203,13 @@ class EventBuilder {
   // Depth first on one thread: the children of depth d live in per-thread storage for that
   // depth and keep their capacity from node to node, so small nodes allocate nothing.
   void build_serial(const NodeWork& work, Subtree& out) const {
+    if (work.triangles.size() <= kSmallNodeTriangles) {
+      const Event* const events[3] = {work.events[0].data(), work.events[1].data(), work.events[2].data()};
+      const size_t counts[3] = {work.events[0].size(), work.events[1].size(), work.events[2].size()};
+      build_small_subtree(scene_, small_parameters_, work.voxel, work.depth, work.triangles.data(),
+                          work.triangles.size(), events, counts, out);
+      return;
+    }
     const SplitChoice split = choose_split(work);
     if (split.axis < 0) {
       out.add_leaf(work.triangles.data(), work.triangles.size());
@@ -379,6 +387,7 @@ class EventBuilder {
   const BuildSettings& settings_;
   const CostModel cost_;
   const uint32_t max_depth_;
+  const SmallBuildParameters small_parameters_;
   const BuildControl& control_;
   std::atomic<uint64_t> finished_mass_{0};
   std::mutex progress_mutex_;

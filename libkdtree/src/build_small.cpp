@@ -1,0 +1,174 @@
+// The small-node path of the event builder: nodes of at most kSmallNodeTriangles triangles,
+// which are most of a tree's nodes and most of its build time, are built from fixed-size
+// arrays reused per depth, with the same split-and-merge of sorted events as the large nodes
+// (insertion sort for the few re-clipped events). It takes the same candidates, costs and
+// decisions in the same order, so it builds the same tree bytes as the general path.
+#include "build_common.h"
+
+#include <algorithm>
+#include <array>
+#include <vector>
+
+namespace kdray::detail {
+namespace {
+
+constexpr size_t kMaxEvents = 2 * kSmallNodeTriangles;
+
+struct SmallNode {
+  Box3 voxel;
+  uint32_t depth = 0;
+  uint32_t count = 0;
+  uint32_t triangles[kSmallNodeTriangles];
+  Box3 bounds[kSmallNodeTriangles];  // each triangle's bounds in the voxel
+  uint32_t event_count[3];
+  Event events[3][kMaxEvents];  // sorted
+};
+
+// Sorts a handful of events in place.
+void insertion_sort(Event* events, size_t count) {
+  for (size_t i = 1; i < count; ++i) {
+    const Event event = events[i];
+    size_t j = i;
+    for (; j > 0 && event < events[j - 1]; --j) events[j] = events[j - 1];
+    events[j] = event;
+  }
+}
+
+// Merges two sorted runs into out (no two events are equal: each names its triangle).
+size_t merge(const Event* a, size_t a_count, const Event* b, size_t b_count, Event* out) {
+  size_t i = 0, j = 0, k = 0;
+  while (i < a_count && j < b_count) out[k++] = b[j] < a[i] ? b[j++] : a[i++];
+  while (i < a_count) out[k++] = a[i++];
+  while (j < b_count) out[k++] = b[j++];
+  return k;
+}
+
+class SmallBuilder {
+ public:
+  SmallBuilder(const Scene& scene, const SmallBuildParameters& parameters)
+      : scene_(scene), parameters_(parameters) {}
+
+  void build(const SmallNode& node, Subtree& out) const {
+    const SplitChoice split = choose_split(node);
+    if (split.axis < 0) {
+      out.add_leaf(node.triangles, node.count);
+      return;
+    }
+    const size_t inner = out.add_inner(split.axis, split.position);
+    // The children of depth d live in this thread's storage for that depth: a subtree of
+    // depth at most kMaxDepthLimit needs two nodes per level and allocates nothing.
+    thread_local std::vector<std::array<SmallNode, 2>> children_at_depth(BuildSettings::kMaxDepthLimit + 2);
+    std::array<SmallNode, 2>& children = children_at_depth[node.depth + 1];
+    divide(node, split, children[0], children[1]);
+    build(children[0], out);
+    out.set_far_child(inner, out.nodes.size());
+    build(children[1], out);
+  }
+
+ private:
+  SplitChoice choose_split(const SmallNode& node) const {
+    SplitChoice split;
+    if (node.count == 0 || node.depth >= parameters_.max_depth) return split;
+    // One best over x, y, z in turn: what the per-axis bests combined in axis order give.
+    for (int axis = 0; axis < 3; ++axis)
+      sweep_axis(node.events[axis], node.event_count[axis], axis, node.voxel, node.count, parameters_.cost, split);
+    if (split.axis >= 0 && !(split.cost < parameters_.cost.leaf_cost(node.count))) split.axis = -1;
+    return split;
+  }
+
+  void divide(const SmallNode& node, const SplitChoice& split, SmallNode& left, SmallNode& right) const {
+    const size_t n = node.count;
+    uint8_t sides[kSmallNodeTriangles];
+    std::fill(sides, sides + n, kBothSides);
+    classify(node.events[split.axis], node.event_count[split.axis], split, sides);
+    left.voxel = below_plane(node.voxel, split.axis, split.position);
+    right.voxel = above_plane(node.voxel, split.axis, split.position);
+    left.depth = right.depth = node.depth + 1;
+    left.count = right.count = 0;
+
+    // Local index of each parent triangle in each child (monotone, so kept events stay
+    // sorted); straddlers get fresh bounds, and fresh events in each child they reach.
+    uint32_t left_index[kSmallNodeTriangles], right_index[kSmallNodeTriangles];
+    Event fresh[2][3][kMaxEvents];
+    size_t fresh_count[2][3] = {};
+    SmallNode* const children[2] = {&left, &right};
+    auto place = [&](int c, size_t i, const Box3& bounds, bool straddles) {
+      SmallNode& child = *children[c];
+      const uint32_t local = child.count++;
+      (c == 0 ? left_index : right_index)[i] = local;
+      child.triangles[local] = node.triangles[i];
+      child.bounds[local] = bounds;
+      if (straddles)
+        for (int axis = 0; axis < 3; ++axis) {
+          Event* const events = fresh[c][axis];
+          size_t& count = fresh_count[c][axis];
+          if (bounds.min[axis] == bounds.max[axis]) {
+            events[count++] = Event{bounds.min[axis], local << 2 | kEventPlanar};
+          } else {
+            events[count++] = Event{bounds.min[axis], local << 2 | kEventStart};
+            events[count++] = Event{bounds.max[axis], local << 2 | kEventEnd};
+          }
+        }
+    };
+    for (size_t i = 0; i < n; ++i) {
+      if (sides[i] == kLeftOnly) {
+        place(0, i, node.bounds[i], false);
+      } else if (sides[i] == kRightOnly) {
+        place(1, i, node.bounds[i], false);
+      } else {
+        Box3 bounds;
+        for (int c = 0; c < 2; ++c)
+          if (child_bounds(scene_, node.triangles[i], node.bounds[i], children[c]->voxel, parameters_.perfect_splits,
+                           bounds))
+            place(c, i, bounds, true);
+      }
+    }
+
+    for (int c = 0; c < 2; ++c) {
+      SmallNode& child = *children[c];
+      const uint8_t own_side = c == 0 ? kLeftOnly : kRightOnly;
+      const uint32_t* const index = c == 0 ? left_index : right_index;
+      for (int axis = 0; axis < 3; ++axis) {
+        Event kept[kMaxEvents];
+        size_t kept_count = 0;
+        const Event* const events = node.events[axis];
+        for (size_t e = 0; e < node.event_count[axis]; ++e) {
+          const uint32_t local = events[e].triangle();
+          if (sides[local] == own_side) kept[kept_count++] = Event{events[e].position, index[local] << 2 | (events[e].packed & 3u)};
+        }
+        insertion_sort(fresh[c][axis], fresh_count[c][axis]);
+        child.event_count[axis] =
+            static_cast<uint32_t>(merge(kept, kept_count, fresh[c][axis], fresh_count[c][axis], child.events[axis]));
+      }
+    }
+  }
+
+  const Scene& scene_;
+  const SmallBuildParameters& parameters_;
+};
+
+}  // namespace
+
+void build_small_subtree(const Scene& scene, const SmallBuildParameters& parameters, const Box3& voxel,
+                         uint32_t depth, const uint32_t* triangles, size_t count, const Event* const events[3],
+                         const size_t event_counts[3], Subtree& out) {
+  thread_local SmallNode root;
+  root.voxel = voxel;
+  root.depth = depth;
+  root.count = static_cast<uint32_t>(count);
+  std::copy(triangles, triangles + count, root.triangles);
+  // The bounds of each triangle in the voxel are what its events say.
+  for (int axis = 0; axis < 3; ++axis) {
+    root.event_count[axis] = static_cast<uint32_t>(event_counts[axis]);
+    std::copy(events[axis], events[axis] + event_counts[axis], root.events[axis]);
+    for (size_t e = 0; e < event_counts[axis]; ++e) {
+      const Event& event = events[axis][e];
+      Box3& bounds = root.bounds[event.triangle()];
+      if (event.type() != kEventEnd) bounds.min[axis] = event.position;
+      if (event.type() != kEventStart) bounds.max[axis] = event.position;
+    }
+  }
+  SmallBuilder(scene, parameters).build(root, out);
+}
+
+}  // namespace kdray::detail

@@ -92,13 +92,14 @@ class SmallBuilder {
     Event fresh[2][3][kMaxEvents];
     size_t fresh_count[2][3] = {};
     SmallNode* const children[2] = {&left, &right};
+    const bool with_events = left.depth < parameters_.max_depth;
     auto place = [&](int c, size_t i, const Box3& bounds, bool straddles) {
       SmallNode& child = *children[c];
       const uint32_t local = child.count++;
       (c == 0 ? left_index : right_index)[i] = local;
       child.triangles[local] = node.triangles[i];
       child.bounds[local] = bounds;
-      if (straddles)
+      if (straddles && with_events)
         for (int axis = 0; axis < 3; ++axis) {
           Event* const events = fresh[c][axis];
           size_t& count = fresh_count[c][axis];
@@ -124,6 +125,8 @@ class SmallBuilder {
       }
     }
 
+    // Children at the depth limit become leaves whatever their events say: they get none.
+    if (left.depth >= parameters_.max_depth) return;
     for (int c = 0; c < 2; ++c) {
       SmallNode& child = *children[c];
       const uint8_t own_side = c == 0 ? kLeftOnly : kRightOnly;

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -399,7 +400,14 @@ class EventBuilder {
 
 KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const BuildControl& control) {
   detail::validate_settings(settings);
+  BuildTimings timings;
+  auto lap = [last = std::chrono::steady_clock::now()](double& phase) mutable {
+    const auto now = std::chrono::steady_clock::now();
+    phase = std::chrono::duration<double>(now - last).count();
+    last = now;
+  };
   detail::RootWork root = detail::prepare_root(scene);
+  lap(timings.prepare);
   tbb::task_arena arena(control.threads == 0 ? tbb::task_arena::automatic : static_cast<int>(control.threads));
   detail::Subtree built;
   arena.execute([&] {
@@ -414,13 +422,19 @@ KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const Bui
         detail::append_events(events, work.bounds[i], axis, static_cast<uint32_t>(i));
       detail::parallel_sort_events(events);
     });
+    lap(timings.events);
     detail::EventBuilder builder(scene, settings, control, work.triangles.size());
     detail::Piece root_piece;
     builder.build(work, root_piece);
+    lap(timings.subdivide);
     built = detail::flatten(std::move(root_piece));
+    lap(timings.assemble);
   });
   if (control.progress) control.progress(1.0);
-  return detail::finish_tree(scene, settings, root.voxel, std::move(built));
+  KdTree tree = detail::finish_tree(scene, settings, root.voxel, std::move(built));
+  lap(timings.statistics);
+  if (control.timings) *control.timings = timings;
+  return tree;
 }
 
 }  // namespace kdray

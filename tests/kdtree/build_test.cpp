@@ -142,6 +142,19 @@ TEST(KdBuild, ReferenceBuilderAgreesOnGeneratedScenes) {
   }
 }
 
+TEST(KdBuild, ReferenceBuilderAgreesAroundTheSmallNodeThreshold) {
+  // Roots just below, at and above the size the builder switches to its fixed-size small-node
+  // path, with and without clipping: the same tree as re-sorting every node.
+  BuildSettings no_clipping;
+  no_clipping.perfect_splits = false;
+  for (size_t triangles : {size_t{1}, size_t{31}, size_t{32}, size_t{33}, size_t{64}, size_t{65}, size_t{400}})
+    for (const BuildSettings& settings : {BuildSettings{}, no_clipping}) {
+      const Scene scene = test::triangle_soup(triangles, static_cast<uint32_t>(triangles));
+      EXPECT_TRUE(same_tree(build_kdtree(scene, settings), test::build_kdtree_by_resorting(scene, settings)))
+          << triangles << " triangles";
+    }
+}
+
 TEST(KdBuild, ReferenceBuilderAgreesOnTheDragon) {
   std::string path;
   KDRAY_CORPUS_FILE(path, "dragon/dragon_vcg_23k.ply");
@@ -156,6 +169,15 @@ TEST(KdBuild, ThreadCountDoesNotChangeTheTree) {
     const KdTree many = build_kdtree(scene, BuildSettings{}, BuildControl{threads, {}});
     EXPECT_TRUE(same_tree(one, many)) << threads << " threads";
   }
+}
+
+TEST(KdBuild, ReportsItsPhaseTimes) {
+  const Scene scene = test::triangle_soup(5000, 4);
+  BuildTimings timings{-1, -1, -1, -1, -1};
+  build_kdtree(scene, BuildSettings{}, BuildControl{2, {}, &timings});
+  for (double seconds : {timings.prepare, timings.events, timings.subdivide, timings.assemble, timings.statistics})
+    EXPECT_GE(seconds, 0.0);
+  EXPECT_GT(timings.subdivide, 0.0);
 }
 
 TEST(KdBuild, ProgressEndsAtOne) {

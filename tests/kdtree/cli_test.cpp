@@ -70,7 +70,8 @@ TEST_F(KdCli, KdbuildWritesATreeAndReportsJson) {
   EXPECT_DOUBLE_EQ(report.at("sah_cost").get<double>(), tree.stats.sah_cost);
   EXPECT_EQ(report.at("leaves").get<uint64_t>(), tree.stats.leaves);
   for (const char* key : {"inner_nodes", "empty_leaves", "max_depth", "mean_leaf_depth", "mean_triangles_per_leaf",
-                          "references_per_triangle", "build_seconds", "peak_memory_mib"})
+                          "references_per_triangle", "build_seconds", "peak_memory_mib", "nodes", "tree_bytes",
+                          "phase_seconds"})
     EXPECT_TRUE(report.contains(key)) << key;
   EXPECT_NO_THROW(check_tree_matches_scene(tree, "room.kdtree", scene_, "room.kdscene"));
 

@@ -5,11 +5,14 @@
 
 #include "tool_main.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 namespace {
 
@@ -28,13 +31,19 @@ double peak_memory_mib() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
-// Prints "kdbuild: building NN%" on stderr, but only once the build has taken a second.
-class ProgressLine {
+// A progress bar on stderr for builds that take more than a second, drawn only when stderr is
+// a terminal: redrawing a line needs carriage returns, which do not belong in a log.
+class ProgressBar {
  public:
-  explicit ProgressLine(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+  explicit ProgressBar(bool enabled)
+      : enabled_(enabled && isatty(fileno(stderr))), start_(std::chrono::steady_clock::now()) {}
   void update(double fraction) {
     if (!enabled_ || std::chrono::steady_clock::now() - start_ < std::chrono::seconds(1)) return;
-    std::fprintf(stderr, "\rkdbuild: building %3d%%", static_cast<int>(fraction * 100.0));
+    constexpr int kWidth = 40;
+    const int filled = std::clamp(static_cast<int>(fraction * kWidth), 0, kWidth);
+    std::fprintf(stderr, "\rkdbuild: [%s%s] %3d%%", std::string(filled, '#').c_str(),
+                 std::string(kWidth - filled, ' ').c_str(), static_cast<int>(fraction * 100.0));
+    std::fflush(stderr);
     shown_ = true;
   }
   void finish() {
@@ -83,25 +92,34 @@ int main(int argc, char** argv) {
     const kdray::Scene scene = kdray::read_scene(scene_path);
     const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    ProgressLine progress(!quiet);
+    ProgressBar progress(!quiet);
     const auto build_start = std::chrono::steady_clock::now();
     const double cpu_start = cpu_seconds();
-    const kdray::KdTree tree =
-        kdray::build_kdtree(scene, settings, {threads, [&](double fraction) { progress.update(fraction); }});
+    kdray::BuildTimings phases;
+    const kdray::KdTree tree = kdray::build_kdtree(
+        scene, settings, {threads, [&](double fraction) { progress.update(fraction); }, &phases});
     const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
     const double build_cpu_seconds = cpu_seconds() - cpu_start;
     progress.finish();
+    const auto write_start = std::chrono::steady_clock::now();
     kdray::write_tree(tree_path, tree);
+    const double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
+    const uint64_t tree_bytes = std::filesystem::file_size(tree_path);
+    const uint64_t nodes = tree.nodes.size();
 
     const kdray::TreeStats& s = tree.stats;
     if (json) {
       nlohmann::json out = {
           {"scene", scene_path}, {"tree", tree_path}, {"scene_hash", kdray::hash_hex(tree.scene_hash)},
-          {"triangles", s.triangles}, {"sah_cost", s.sah_cost}, {"inner_nodes", s.inner_nodes},
+          {"triangles", s.triangles}, {"sah_cost", s.sah_cost}, {"nodes", nodes}, {"inner_nodes", s.inner_nodes},
           {"leaves", s.leaves}, {"empty_leaves", s.empty_leaves}, {"max_depth", s.max_depth},
           {"mean_leaf_depth", s.mean_leaf_depth}, {"mean_triangles_per_leaf", s.mean_triangles_per_leaf},
           {"references_per_triangle", s.references_per_triangle}, {"build_seconds", build_seconds}, {"build_cpu_seconds", build_cpu_seconds},
-          {"load_seconds", load_seconds}, {"peak_memory_mib", peak_memory_mib()},
+          {"load_seconds", load_seconds}, {"write_seconds", write_seconds},
+          {"phase_seconds", {{"load", load_seconds}, {"prepare", phases.prepare}, {"events", phases.events},
+                             {"subdivide", phases.subdivide}, {"assemble", phases.assemble},
+                             {"statistics", phases.statistics}, {"write", write_seconds}}},
+          {"peak_memory_mib", peak_memory_mib()}, {"tree_bytes", tree_bytes},
           {"settings", {{"kt", tree.settings.traversal_cost}, {"ki", tree.settings.intersection_cost},
                         {"empty_bonus", tree.settings.empty_bonus},
                         {"max_depth", tree.settings.resolved_max_depth(s.triangles)},
@@ -122,7 +140,12 @@ int main(int argc, char** argv) {
     std::printf("  references per triangle  %.3f\n", s.references_per_triangle);
     std::printf("  build                    %.3f s, %.3f s CPU (scene load %.3f s)\n", build_seconds,
                 build_cpu_seconds, load_seconds);
-    std::printf("  peak memory              %.1f MiB\n", peak_memory_mib());
+    std::printf("  phases                   prepare %.3f, events %.3f, subdivide %.3f, assemble %.3f, statistics %.3f, "
+                "write %.3f s\n",
+                phases.prepare, phases.events, phases.subdivide, phases.assemble, phases.statistics, write_seconds);
+    std::printf("  peak memory              %.1f MiB (scene, build and tree)\n", peak_memory_mib());
+    std::printf("  tree size                %.1f MiB (%llu nodes)\n", static_cast<double>(tree_bytes) / (1024.0 * 1024.0),
+                static_cast<unsigned long long>(nodes));
     return kdray::tool::kExitOk;
   });
 }

@@ -61,9 +61,19 @@ struct KdTree {
 // serialised by the builder.
 using BuildProgress = std::function<void(double fraction)>;
 
+// Wall seconds of the phases of one build (machine-dependent, so never part of the tree).
+struct BuildTimings {
+  double prepare = 0;   // triangle bounds and the root voxel
+  double events = 0;    // the root's events, sorted on each axis
+  double subdivide = 0; // choosing splits and dividing nodes down to the leaves
+  double assemble = 0;  // joining the subtrees built in parallel into one node array
+  double statistics = 0;
+};
+
 struct BuildControl {
   unsigned threads = 0;  // 0: all hardware threads; the tree is the same for any count
   BuildProgress progress;
+  BuildTimings* timings = nullptr;  // filled in when set
 };
 
 // Builds the tree for scene (whose content_hash is recorded; compute it first). Triangles with

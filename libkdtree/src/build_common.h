@@ -10,6 +10,7 @@
 
 #include <kernels/kd_types.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -103,6 +104,21 @@ inline void append_events(EventVector& events, const Box3& bounds, int axis, uin
     events.push_back({bounds.min[axis], local << 2 | kEventStart});
     events.push_back({bounds.max[axis], local << 2 | kEventEnd});
   }
+}
+
+// std::merge of two sorted event runs for operator<, choosing the next event's run by a
+// computed flag rather than an if, as which run it comes from is unpredictable; the flag is
+// operator<, with bitwise operators.
+inline void merge_events(const Event* a, const Event* a_end, const Event* b, const Event* b_end, Event* out) {
+  while (a != a_end && b != b_end) {
+    const bool take_b = (b->position < a->position) |
+                        ((b->position == a->position) & (event_order_key(b->packed) < event_order_key(a->packed)));
+    *out++ = take_b ? *b : *a;
+    b += take_b;
+    a += !take_b;
+  }
+  out = std::copy(a, a_end, out);
+  std::copy(b, b_end, out);
 }
 
 struct SplitChoice {

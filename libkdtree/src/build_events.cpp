@@ -354,21 +354,6 @@ class EventBuilder {
     merge_events(kept.data(), kept.data() + kept.size(), fresh.data(), fresh.data() + fresh.size(), out.data());
   }
 
-  // std::merge for operator<, choosing the next event's list by a computed flag rather than an
-  // if, as which list it comes from is unpredictable; the flag is operator<, with bitwise
-  // operators.
-  static void merge_events(const Event* a, const Event* a_end, const Event* b, const Event* b_end, Event* out) {
-    while (a != a_end && b != b_end) {
-      const bool take_b = (b->position < a->position) |
-                          ((b->position == a->position) & (event_order_key(b->packed) < event_order_key(a->packed)));
-      *out++ = take_b ? *b : *a;
-      b += take_b;
-      a += !take_b;
-    }
-    out = std::copy(a, a_end, out);
-    std::copy(b, b_end, out);
-  }
-
   // Progress is the share of the tree's "mass" in finished subtrees, a subtree at depth d
   // weighing 2^-d: for a binary tree these weights sum to exactly 1 (Kraft), so it ends at
   // 100%. Only subtrees of the parallel levels report, which keeps the shared counter cold.

@@ -34,15 +34,6 @@ void insertion_sort(Event* events, size_t count) {
   }
 }
 
-// Merges two sorted runs into out (no two events are equal: each names its triangle).
-size_t merge(const Event* a, size_t a_count, const Event* b, size_t b_count, Event* out) {
-  size_t i = 0, j = 0, k = 0;
-  while (i < a_count && j < b_count) out[k++] = b[j] < a[i] ? b[j++] : a[i++];
-  while (i < a_count) out[k++] = a[i++];
-  while (j < b_count) out[k++] = b[j++];
-  return k;
-}
-
 class SmallBuilder {
  public:
   SmallBuilder(const Scene& scene, const SmallBuildParameters& parameters)
@@ -112,6 +103,9 @@ class SmallBuilder {
         }
     };
     for (size_t i = 0; i < n; ++i) {
+      // The event split below reads both indices of every triangle, so both hold a value.
+      left_index[i] = left.count;
+      right_index[i] = right.count;
       if (sides[i] == kLeftOnly) {
         place(0, i, node.bounds[i], false);
       } else if (sides[i] == kRightOnly) {
@@ -126,22 +120,35 @@ class SmallBuilder {
     }
 
     // Children at the depth limit become leaves whatever their events say: they get none.
-    if (left.depth >= parameters_.max_depth) return;
-    for (int c = 0; c < 2; ++c) {
-      SmallNode& child = *children[c];
-      const uint8_t own_side = c == 0 ? kLeftOnly : kRightOnly;
-      const uint32_t* const index = c == 0 ? left_index : right_index;
-      for (int axis = 0; axis < 3; ++axis) {
-        Event kept[kMaxEvents];
-        size_t kept_count = 0;
-        const Event* const events = node.events[axis];
-        for (size_t e = 0; e < node.event_count[axis]; ++e) {
-          const uint32_t local = events[e].triangle();
-          if (sides[local] == own_side) kept[kept_count++] = Event{events[e].position, index[local] << 2 | (events[e].packed & 3u)};
-        }
-        insertion_sort(fresh[c][axis], fresh_count[c][axis]);
-        child.event_count[axis] =
-            static_cast<uint32_t>(merge(kept, kept_count, fresh[c][axis], fresh_count[c][axis], child.events[axis]));
+    if (!with_events) return;
+    // Each event goes to the child its triangle alone reaches, without a branch on the side:
+    // it is written to both and each child's cursor advances only over its own. Straddlers'
+    // fresh events are then merged in (the kept ones go straight to the child without any).
+    for (int axis = 0; axis < 3; ++axis) {
+      Event kept[2][kMaxEvents];
+      Event* const to_left = fresh_count[0][axis] == 0 ? left.events[axis] : kept[0];
+      Event* const to_right = fresh_count[1][axis] == 0 ? right.events[axis] : kept[1];
+      Event* l = to_left;
+      Event* r = to_right;
+      const Event* const events = node.events[axis];
+      for (size_t e = 0; e < node.event_count[axis]; ++e) {
+        const uint32_t local = events[e].triangle();
+        const uint32_t type = events[e].packed & 3u;
+        *l = Event{events[e].position, left_index[local] << 2 | type};
+        *r = Event{events[e].position, right_index[local] << 2 | type};
+        l += sides[local] == kLeftOnly;
+        r += sides[local] == kRightOnly;
+      }
+      Event* const ends[2] = {l, r};
+      Event* const starts[2] = {to_left, to_right};
+      for (int c = 0; c < 2; ++c) {
+        Event* const fresh_events = fresh[c][axis];
+        const size_t count = fresh_count[c][axis];
+        const size_t kept_count = static_cast<size_t>(ends[c] - starts[c]);
+        children[c]->event_count[axis] = static_cast<uint32_t>(kept_count + count);
+        if (count == 0) continue;
+        insertion_sort(fresh_events, count);
+        merge_events(starts[c], ends[c], fresh_events, fresh_events + count, children[c]->events[axis]);
       }
     }
   }

@@ -192,6 +192,15 @@ void check_exr_claims(const std::string& path) {
 
 }  // namespace
 
+std::optional<std::pair<uint32_t, uint32_t>> read_image_size(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) {
+    OIIO::geterror();  // clears the message this failure left
+    return std::nullopt;
+  }
+  return std::make_pair(uint32_t(in->spec().width), uint32_t(in->spec().height));
+}
+
 bool is_supported_image_path(const std::string& path) {
   std::string ext = lower_extension(path);
   return ext == ".exr" || ext == ".png" || ext == ".jpg" || ext == ".jpeg";

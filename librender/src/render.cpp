@@ -74,17 +74,6 @@ void check_settings(const RenderSettings& s) {
   if (!(s.time_limit_seconds >= 0)) throw Error("", "--time-limit must be >= 0");
 }
 
-// Identifies the tree an image was rendered with (its nodes and leaf arrays).
-uint64_t tree_content_hash(const KdTree& tree) {
-  XXH3_state_t* state = XXH3_createState();
-  XXH3_64bits_reset(state);
-  XXH3_64bits_update(state, tree.nodes.data(), tree.nodes.size() * sizeof(KdNode));
-  XXH3_64bits_update(state, tree.leaf_triangles.data(), tree.leaf_triangles.size() * sizeof(uint32_t));
-  uint64_t hash = XXH3_64bits_digest(state);
-  XXH3_freeState(state);
-  return hash;
-}
-
 // Next-event estimation picks each kind of light that gives light with the same probability.
 void set_light_selection(PtRenderParams& params, const DeviceScene& device, const Environment* environment) {
   const bool triangles = device.light_count > 0;
@@ -105,6 +94,16 @@ void set_light_selection(PtRenderParams& params, const DeviceScene& device, cons
 }
 
 }  // namespace
+
+uint64_t tree_content_hash(const KdTree& tree) {
+  XXH3_state_t* state = XXH3_createState();
+  XXH3_64bits_reset(state);
+  XXH3_64bits_update(state, tree.nodes.data(), tree.nodes.size() * sizeof(KdNode));
+  XXH3_64bits_update(state, tree.leaf_triangles.data(), tree.leaf_triangles.size() * sizeof(uint32_t));
+  uint64_t hash = XXH3_64bits_digest(state);
+  XXH3_freeState(state);
+  return hash;
+}
 
 Camera render_camera(const Scene& scene, const RenderSettings& settings) {
   Camera camera = settings.camera         ? *settings.camera

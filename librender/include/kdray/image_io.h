@@ -3,7 +3,10 @@
 
 #include <kdray/film.h>
 
+#include <cstdint>
+#include <optional>
 #include <string>
+#include <utility>
 
 namespace kdray {
 
@@ -16,6 +19,9 @@ void write_film_image(const std::string& path, const Film& film);
 
 // Reads an EXR written by write_film_image, sums included. Throws kdray::Error.
 Film read_film_exr(const std::string& path);
+
+// The width and height of an image OpenImageIO reads; nullopt when it cannot open it.
+std::optional<std::pair<uint32_t, uint32_t>> read_image_size(const std::string& path);
 
 // True when write_film_image knows the extension of path.
 bool is_supported_image_path(const std::string& path);

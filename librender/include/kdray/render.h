@@ -78,4 +78,7 @@ std::string kernel_feature_options(const Scene& scene, const RenderSettings& set
 // The camera from settings, the scene or default_camera(scene bounds), checked (finite, non-degenerate, 0 < fov < 180).
 Camera render_camera(const Scene& scene, const RenderSettings& settings);
 
+// Identifies the tree an image was rendered with (its nodes and leaf arrays): Film::tree_hash.
+uint64_t tree_content_hash(const KdTree& tree);
+
 }  // namespace kdray

@@ -1,0 +1,110 @@
+#include "render_frame.h"
+
+#include <kdray/image_io.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+namespace kdrender {
+namespace {
+
+double rate(double count, double seconds) { return seconds > 0 ? count / seconds : 0; }
+
+size_t film_channels(const kdray::RenderSettings& s) {
+  return 3 + (s.aov_albedo ? 3 : 0) + (s.aov_normal ? 3 : 0) + (s.aov_depth ? 1 : 0);
+}
+
+}  // namespace
+
+FrameResult render_frame(const kdray::Scene& scene, const kdray::KdTree& tree, const Frame& frame,
+                         const kdray::RenderProgress& progress) {
+  FrameResult result;
+  result.film = kdray::render(scene, tree, frame.settings, frame.device, &result.stats, progress);
+  auto write_start = std::chrono::steady_clock::now();
+  kdray::write_film_image(frame.output, result.film);
+  result.write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
+  return result;
+}
+
+nlohmann::json frame_json(const Frame& frame, const FrameResult& result) {
+  const kdray::Film& film = result.film;
+  const kdray::RenderStats& stats = result.stats;
+  const double pixel_samples = double(film.pixel_count()) * film.sample_count;
+  const auto& environment = frame.settings.environment;
+  return {{"output", frame.output},
+          {"device", stats.device},
+          {"form", frame.settings.form == kdray::RenderForm::Wavefront ? "wavefront" : "megakernel"},
+          {"width", film.width},
+          {"height", film.height},
+          {"spp", film.sample_count},
+          {"spp_requested", frame.settings.spp},
+          {"sample_offset", film.sample_offset},
+          {"seed", film.seed},
+          {"max_bounces", film.max_bounces},
+          {"sampler", kdray::sampler_name(film.sampler)},
+          {"kernel_options", stats.kernel_options},
+          {"environment", environment ? environment->source : stats.default_light ? "default" : ""},
+          {"environment_seconds", frame.environment_seconds},
+          {"build_seconds", stats.build_seconds},
+          {"build_source", stats.build_source},
+          {"upload_seconds", stats.upload_seconds},
+          {"render_seconds", stats.render_seconds},
+          {"write_seconds", result.write_seconds},
+          {"samples_per_second", rate(pixel_samples, stats.render_seconds)},
+          {"rays", stats.rays},
+          {"rays_per_second", rate(double(stats.rays), stats.render_seconds)},
+          {"mean_radiance", film.mean_radiance()},
+          {"nonfinite_values", stats.nonfinite_values}};
+}
+
+void print_frame_summary(const Frame& frame, const FrameResult& result) {
+  const kdray::Film& film = result.film;
+  const kdray::RenderStats& stats = result.stats;
+  const double pixel_samples = double(film.pixel_count()) * film.sample_count;
+  std::printf("%s: %ux%u, %u spp (samples %u..%u), %u max bounces, %s sampler, seed %u\n", frame.output.c_str(),
+              film.width, film.height, film.sample_count, film.sample_offset,
+              film.sample_offset + film.sample_count - 1, film.max_bounces, kdray::sampler_name(film.sampler),
+              film.seed);
+  std::printf("device %s; kernel %s (%s, %.2f s)\n", stats.device.c_str(), stats.kernel_options.c_str(),
+              stats.build_source.c_str(), stats.build_seconds);
+  std::printf("render %.3f s: %.2f M samples/s, %.2f M rays/s\n", stats.render_seconds,
+              rate(pixel_samples, stats.render_seconds) * 1e-6, rate(double(stats.rays), stats.render_seconds) * 1e-6);
+  if (stats.nonfinite_values) {
+    std::printf("warning: %llu NaN/Inf sample values were counted as 0\n",
+                static_cast<unsigned long long>(stats.nonfinite_values));
+  }
+}
+
+void warn_if_default_light(const kdray::Scene& scene, const std::string& scene_path, const Frame& frame) {
+  static bool warned = false;
+  if (warned || frame.settings.environment || !kdray::render_environment(scene, frame.settings)) return;
+  warned = true;
+  std::fprintf(stderr,
+               "kdrender: warning: %s: the scene has no light (no emissive triangles, no punctual lights) and no "
+               "--env: lighting it with the default light, a uniform white environment of radiance 1 "
+               "(--no-default-light renders black)\n",
+               scene_path.c_str());
+}
+
+bool frame_already_written(const Frame& frame, const kdray::Scene& scene, uint64_t tree_hash) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(frame.output, error)) return false;
+  const kdray::RenderSettings& s = frame.settings;
+  if (std::filesystem::path(frame.output).extension() != ".exr") {
+    auto size = kdray::read_image_size(frame.output);
+    return size && size->first == s.width && size->second == s.height;
+  }
+  kdray::Film film;
+  try {
+    film = kdray::read_film_exr(frame.output);
+  } catch (const kdray::Error&) {
+    return false;  // not an image of ours: render it again
+  }
+  return film.width == s.width && film.height == s.height && film.channels.size() == film_channels(s) &&
+         film.sample_offset == s.sample_offset && film.sample_count == s.spp && film.seed == s.seed &&
+         film.max_bounces == s.max_bounces && film.sampler == s.sampler && film.scene_hash == scene.content_hash &&
+         film.tree_hash == tree_hash;
+}
+
+}  // namespace kdrender

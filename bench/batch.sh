@@ -22,11 +22,11 @@ echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 cd "$WORK"
 "$ROOT/samples/cornell-bunny.sh" cornell-bunny.obj
 "$BUILD/tools/kdconvert/kdconvert" cornell-bunny.obj scene.kdscene --quiet
-"$BUILD/tools/kdbuild/kdbuild" scene.kdscene scene.kdtree --quiet
+"$BUILD/tools/kdbuild/kdbuild" scene.kdscene scene.kdtree --quiet > /dev/null
 mapfile -t lines < <(sed -e 's/#.*//' -e '/^[[:space:]]*$/d' "$ROOT/samples/turntable.jobs")
 echo "frames: ${#lines[@]}"
 export KDRAY_CACHE_DIR=$WORK/program-cache
-"$KDRENDER" scene.kdscene scene.kdtree -o warm.png "${SETTINGS[@]}" --spp 1 --quiet
+"$KDRENDER" scene.kdscene scene.kdtree -o warm.png --width 8 --height 8 --spp 1 --quiet
 
 batch() {
   mkdir -p batch && cd batch

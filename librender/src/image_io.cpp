@@ -78,6 +78,7 @@ void write_exr(const std::string& path, const Film& film) {
   spec.attribute("kdray:seconds", float(film.render_seconds));
   spec.attribute("kdray:scene_hash", hex64(film.scene_hash));
   spec.attribute("kdray:tree_hash", hex64(film.tree_hash));
+  spec.attribute("kdray:settings_hash", hex64(film.settings_hash));
   spec.attribute("kdray:fixed_bits", kFilmFixedBits);
 
   std::vector<float> means = film.means();
@@ -269,6 +270,8 @@ Film read_film_exr(const std::string& path) {
   film.render_seconds = spec.get_float_attribute("kdray:seconds");
   film.scene_hash = parse_hex(path, spec.get_string_attribute("kdray:scene_hash"));
   film.tree_hash = parse_hex(path, spec.get_string_attribute("kdray:tree_hash"));
+  const std::string settings_hash = spec.get_string_attribute("kdray:settings_hash");  // absent in older images
+  film.settings_hash = settings_hash.empty() ? 0 : parse_hex(path, settings_hash);
 
   std::vector<uint32_t> sum_channel(film.pixel_count());
   film.sums.assign(film.pixel_count() * film.channels.size(), 0);

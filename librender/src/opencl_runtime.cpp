@@ -87,8 +87,8 @@ std::pair<DeviceInfo, cl_device_id> resolve(const DeviceSelection& selection) {
   char* end = nullptr;
   long index = std::strtol(choice.c_str(), &end, 10);
   if (choice.empty() || *end != '\0' || index < 0 || index >= static_cast<long>(devices.size())) {
-    throw Error("", "--device " + choice + ": expected auto, cpu, gpu or an index below " +
-                        std::to_string(devices.size()) + " (see --device list)");
+    throw Error("", "--device " + choice + ": expected auto, cpu, gpu, all, an index below " +
+                        std::to_string(devices.size()) + " or a list of them, comma-separated (see --device list)");
   }
   return devices[static_cast<size_t>(index)];
 }
@@ -102,6 +102,34 @@ std::vector<DeviceInfo> list_devices() {
 }
 
 DeviceInfo select_device(const DeviceSelection& selection) { return resolve(selection).first; }
+
+std::vector<DeviceSelection> split_device_selection(const DeviceSelection& selection) {
+  std::vector<std::string> names;
+  if (selection.device == "all") {
+    for (const DeviceInfo& info : list_devices()) names.push_back(std::to_string(info.index));
+  } else if (selection.device.find(',') == std::string::npos) {
+    return {selection};
+  } else {
+    size_t start = 0;
+    for (size_t comma; (comma = selection.device.find(',', start)) != std::string::npos; start = comma + 1) {
+      names.push_back(selection.device.substr(start, comma - start));
+    }
+    names.push_back(selection.device.substr(start));
+  }
+  std::vector<DeviceSelection> selections;
+  std::vector<int> indices;
+  for (const std::string& name : names) {
+    DeviceSelection one = selection;
+    one.device = name;
+    const int index = select_device(one).index;
+    if (std::find(indices.begin(), indices.end(), index) != indices.end()) {
+      throw Error("", "--device " + selection.device + ": device " + std::to_string(index) + " is named twice");
+    }
+    indices.push_back(index);
+    selections.push_back(one);
+  }
+  return selections;
+}
 
 namespace cl {
 

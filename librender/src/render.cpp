@@ -11,7 +11,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
+#include <utility>
+#include <vector>
 
 namespace kdray {
 namespace {
@@ -105,6 +112,30 @@ uint64_t tree_content_hash(const KdTree& tree) {
   return hash;
 }
 
+uint64_t render_settings_hash(const Scene& scene, const RenderSettings& settings) {
+  XXH3_state_t* state = XXH3_createState();
+  XXH3_64bits_reset(state);
+  auto add = [&](const void* data, size_t bytes) { XXH3_64bits_update(state, data, bytes); };
+  const Camera camera = render_camera(scene, settings);
+  const float camera_values[] = {camera.position.x, camera.position.y, camera.position.z, camera.target.x,
+                                 camera.target.y,   camera.target.z,   camera.up.x,       camera.up.y,
+                                 camera.up.z,       camera.vertical_fov_degrees};
+  add(camera_values, sizeof camera_values);
+  const std::shared_ptr<const Environment> environment = render_environment(scene, settings);
+  const uint32_t switches[] = {environment ? 1u : 0u, settings.mis ? 1u : 0u};
+  add(switches, sizeof switches);
+  if (environment) {
+    const uint32_t size[] = {environment->width, environment->height};
+    const float transform[] = {environment->strength, environment->rotate_degrees};
+    add(size, sizeof size);
+    add(transform, sizeof transform);
+    add(environment->rgb.data(), environment->rgb.size() * sizeof(float));
+  }
+  uint64_t hash = XXH3_64bits_digest(state);
+  XXH3_freeState(state);
+  return hash;
+}
+
 Camera render_camera(const Scene& scene, const RenderSettings& settings) {
   Camera camera = settings.camera         ? *settings.camera
                   : scene.cameras.empty() ? default_camera(scene_bounds(scene))
@@ -161,24 +192,29 @@ void RenderJob::set_pass(uint32_t sample_offset, uint32_t sample_count) {
 
 namespace {
 
-void run_megakernel_pass(RenderJob& job, cl_kernel kernel, uint32_t first, uint32_t count) {
-  job.set_pass(first, count);
-  cl::zero_buffer(job.runtime.queue(), job.counter, sizeof(cl_uint));
-  cl::run_kernel(job.runtime.queue(), kernel, job.global_size, job.local_size);
-  cl::check(clFinish(job.runtime.queue()), "clFinish");
-}
+// One device's part of a render: the scene uploaded to it, its own film and its program.
+struct DeviceRender {
+  RenderJob job;
+  cl::Kernel megakernel;  // null in the wavefront form
+  size_t film_bytes = 0;
+  RenderStats stats;      // device, kernel, build and upload
 
-}  // namespace
+  void pass(uint32_t first, uint32_t count) {
+    if (!megakernel.get()) return run_wavefront_pass(job, first, count);
+    job.set_pass(first, count);
+    cl::zero_buffer(job.runtime.queue(), job.counter, sizeof(cl_uint));
+    cl::run_kernel(job.runtime.queue(), megakernel.get(), job.global_size, job.local_size);
+    cl::check(clFinish(job.runtime.queue()), "clFinish");
+  }
+};
 
-Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settings, const DeviceSelection& device,
-            RenderStats* stats_out, const RenderProgress& progress) {
-  check_settings(settings);
-  Camera camera = render_camera(scene, settings);
-  RenderStats stats;
+std::unique_ptr<DeviceRender> prepare_device(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
+                                             const DeviceSelection& device, const Camera& camera,
+                                             const std::shared_ptr<const Environment>& environment) {
   cl::Runtime& runtime = cl::runtime_for(device);
+  RenderStats stats;
   stats.device = runtime.info().name;
   stats.kernel_options = kernel_feature_options(scene, settings, device);
-  const std::shared_ptr<const Environment> environment = render_environment(scene, settings);
   stats.default_light = environment && !settings.environment;
   const bool wavefront = settings.form == RenderForm::Wavefront;
   cl::ProgramBuild build = runtime.program(wavefront ? "pt_wavefront.cl" : "pt_megakernel.cl", stats.kernel_options);
@@ -186,7 +222,11 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settin
   stats.build_source = build.source;
 
   auto upload_start = Clock::now();
-  RenderJob job{runtime, upload_scene(runtime, scene, tree, environment.get()), PtRenderParams{}, {}, {}, {}, {}, build.program, 0, 0};
+  auto device_render = std::make_unique<DeviceRender>(DeviceRender{
+      RenderJob{runtime, upload_scene(runtime, scene, tree, environment.get()), PtRenderParams{}, {}, {}, {}, {},
+                build.program, 0, 0},
+      {}, 0, {}});
+  RenderJob& job = device_render->job;
   PtRenderParams& params = job.params;
   set_camera(params, camera, settings.width, settings.height);
   for (int axis = 0; axis < 3; ++axis) {
@@ -207,6 +247,7 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settin
                     (settings.aov_depth ? PT_AOV_DEPTH : 0);
   params.film_channels = film_channel_count(settings);
   const size_t film_bytes = size_t(settings.width) * settings.height * params.film_channels * sizeof(int64_t);
+  device_render->film_bytes = film_bytes;
   job.params_buffer = runtime.buffer(sizeof params, &params);
   job.film = runtime.buffer(film_bytes, nullptr, CL_MEM_READ_WRITE);
   job.counter = runtime.buffer(sizeof(cl_uint), nullptr, CL_MEM_READ_WRITE);
@@ -215,63 +256,201 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settin
   cl::zero_buffer(runtime.queue(), job.stats, 2 * sizeof(cl_ulong));
   job.local_size = runtime.local_size(device);
   job.global_size = runtime.persistent_global_size(job.local_size);
-  cl::Kernel megakernel;
   if (!wavefront) {
-    megakernel = cl::create_kernel(build.program, "pt_render");
-    cl_uint next = bind_scene_args(megakernel.get(), job.scene, job.params_buffer);
-    cl::set_arg(megakernel.get(), next++, job.film);
-    cl::set_arg(megakernel.get(), next++, job.counter);
-    cl::set_arg(megakernel.get(), next++, job.stats);
+    device_render->megakernel = cl::create_kernel(build.program, "pt_render");
+    cl_kernel kernel = device_render->megakernel.get();
+    cl_uint next = bind_scene_args(kernel, job.scene, job.params_buffer);
+    cl::set_arg(kernel, next++, job.film);
+    cl::set_arg(kernel, next++, job.counter);
+    cl::set_arg(kernel, next++, job.stats);
   }
   cl::check(clFinish(runtime.queue()), "clFinish");
   stats.upload_seconds = seconds_since(upload_start);
+  device_render->stats = stats;
+  return device_render;
+}
 
-  // Passes grow to about half a second each; with a time limit, a pass only starts when its
-  // predicted end is within the limit. The pass split never changes the image (fixed point).
-  auto render_start = Clock::now();
-  uint32_t done = 0;
-  double seconds_per_sample = 0;
-  while (done < settings.spp) {
+// Hands out the render's samples to the devices as consecutive ranges. First pass: every device
+// gets one sample, to measure its speed (no device gets a second range before each has had its
+// first). Then each range lasts about half a second at the device's measured speed, but never
+// more than its speed's share of what is left (a device not measured yet counts at the mean
+// speed), so the devices finish together. With a time limit, a range starts only when its
+// predicted end is within the limit. Ranges are handed out in order and every range handed out
+// completes, so the samples rendered are sample_offset .. sample_offset + handed_out - 1,
+// whatever the split.
+class SampleScheduler {
+ public:
+  SampleScheduler(const RenderSettings& settings, size_t devices, const RenderProgress& progress)
+      : settings_(settings), rates_(devices, 0.0), started_(devices, false), progress_(progress),
+        start_(Clock::now()) {}
+
+  // The next range for `device` (count 0: none left for it).
+  std::pair<uint32_t, uint32_t> next(size_t device) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (started_[device]) {
+      first_pass_done_.wait(lock, [&] { return failed_ || handed_out_ == settings_.spp || all_started(); });
+    }
+    // A device that gets nothing more counts as started, so no other waits for it.
+    auto none = [&]() -> std::pair<uint32_t, uint32_t> {
+      started_[device] = true;
+      first_pass_done_.notify_all();
+      return {0, 0};
+    };
+    const uint32_t left = settings_.spp - handed_out_;
+    if (failed_ || left == 0) return none();
+    const double elapsed = seconds_since(start_);
     uint32_t count = 1;
-    double elapsed = seconds_since(render_start);
-    if (seconds_per_sample > 0) {
+    const double rate = rates_[device];
+    if (rate > 0) {
       double budget = 0.5;
-      if (settings.time_limit_seconds > 0) budget = std::min(budget, settings.time_limit_seconds - elapsed);
-      count = static_cast<uint32_t>(std::clamp(budget / seconds_per_sample, 1.0, double(settings.spp - done)));
+      if (settings_.time_limit_seconds > 0) budget = std::min(budget, settings_.time_limit_seconds - elapsed);
+      double known = 0;
+      size_t measured = 0;
+      for (double r : rates_) {
+        known += r;
+        measured += r > 0;
+      }
+      const double total = known + (rates_.size() - measured) * (known / measured);
+      const double share = std::ceil(double(left) * rate / total);
+      count = static_cast<uint32_t>(std::clamp(std::min(budget * rate, share), 1.0, double(left)));
+      if (settings_.time_limit_seconds > 0 && elapsed + count / rate > settings_.time_limit_seconds) return none();
+    } else if (settings_.time_limit_seconds > 0 && handed_out_ > 0 && elapsed > settings_.time_limit_seconds) {
+      return none();
     }
-    if (settings.time_limit_seconds > 0 && done > 0 && elapsed + count * seconds_per_sample > settings.time_limit_seconds) {
-      break;
+    const uint32_t first = settings_.sample_offset + handed_out_;
+    handed_out_ += count;
+    started_[device] = true;
+    first_pass_done_.notify_all();
+    return {first, count};
+  }
+
+  void finished(size_t device, uint32_t count, double seconds) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    rates_[device] = seconds > 0 ? count / seconds : 1e9;
+    completed_ += count;
+    if (progress_) progress_(completed_, settings_.spp);
+  }
+  void fail() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    failed_ = true;
+    first_pass_done_.notify_all();
+  }
+  uint32_t handed_out() const { return handed_out_; }
+
+ private:
+  bool all_started() const { return std::all_of(started_.begin(), started_.end(), [](bool s) { return s; }); }
+
+  const RenderSettings& settings_;
+  std::mutex mutex_;
+  std::condition_variable first_pass_done_;
+  std::vector<double> rates_;  // samples per second per device; 0 until its first range ends
+  std::vector<bool> started_;  // the device has had its first range
+  uint32_t handed_out_ = 0, completed_ = 0;
+  bool failed_ = false;
+  const RenderProgress& progress_;
+  Clock::time_point start_;
+};
+
+// Renders ranges on one device until the scheduler has none left for it.
+void run_device(DeviceRender& device, size_t index, SampleScheduler& scheduler, DeviceShare& share) {
+  for (;;) {
+    auto [first, count] = scheduler.next(index);
+    if (count == 0) return;
+    auto start = Clock::now();
+    device.pass(first, count);
+    const double seconds = seconds_since(start);
+    share.samples += count;
+    share.seconds += seconds;
+    scheduler.finished(index, count, seconds);
+  }
+}
+
+std::string join_distinct(const std::vector<std::string>& items, const char* separator) {
+  std::string joined;
+  std::vector<std::string> seen;
+  for (const std::string& item : items) {
+    if (std::find(seen.begin(), seen.end(), item) != seen.end()) continue;
+    joined += (seen.empty() ? "" : separator) + item;
+    seen.push_back(item);
+  }
+  return joined;
+}
+
+}  // namespace
+
+Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settings, const DeviceSelection& device,
+            RenderStats* stats_out, const RenderProgress& progress) {
+  check_settings(settings);
+  const Camera camera = render_camera(scene, settings);
+  const std::shared_ptr<const Environment> environment = render_environment(scene, settings);
+  const std::vector<DeviceSelection> selections = split_device_selection(device);
+  std::vector<std::unique_ptr<DeviceRender>> devices;
+  for (const DeviceSelection& selection : selections) {
+    devices.push_back(prepare_device(scene, tree, settings, selection, camera, environment));
+  }
+
+  RenderStats stats = devices.front()->stats;
+  std::vector<std::string> names, sources;
+  for (size_t i = 1; i < devices.size(); ++i) {
+    stats.build_seconds += devices[i]->stats.build_seconds;
+    stats.upload_seconds += devices[i]->stats.upload_seconds;
+  }
+  for (const auto& d : devices) {
+    names.push_back(d->stats.device);
+    sources.push_back(d->stats.build_source);
+    stats.devices.push_back({d->stats.device, d->job.runtime.info().index, 0, 0});
+  }
+  stats.build_source = join_distinct(sources, ", ");
+
+  auto render_start = Clock::now();
+  SampleScheduler scheduler(settings, devices.size(), progress);
+  if (devices.size() == 1) {
+    run_device(*devices.front(), 0, scheduler, stats.devices.front());
+  } else {
+    std::vector<std::thread> threads;
+    std::vector<std::exception_ptr> errors(devices.size());
+    for (size_t i = 0; i < devices.size(); ++i) {
+      threads.emplace_back([&, i] {
+        try {
+          run_device(*devices[i], i, scheduler, stats.devices[i]);
+        } catch (...) {
+          errors[i] = std::current_exception();
+          scheduler.fail();
+        }
+      });
     }
-    auto pass_start = Clock::now();
-    if (wavefront) {
-      run_wavefront_pass(job, settings.sample_offset + done, count);
-    } else {
-      run_megakernel_pass(job, megakernel.get(), settings.sample_offset + done, count);
+    for (std::thread& thread : threads) thread.join();
+    for (const std::exception_ptr& error : errors) {
+      if (error) std::rethrow_exception(error);
     }
-    seconds_per_sample = seconds_since(pass_start) / count;
-    done += count;
-    if (progress) progress(done, settings.spp);
   }
   stats.render_seconds = seconds_since(render_start);
-  stats.samples_rendered = done;
+  stats.samples_rendered = scheduler.handed_out();
+  stats.device = names.size() == 1 ? names.front() : std::to_string(names.size()) + " devices: " + join_distinct(names, ", ");
 
+  // Fixed-point sums add exactly, so the devices' films sum to the single-device film.
   Film film;
   film.width = settings.width;
   film.height = settings.height;
   film.channels = film_channel_names(settings);
-  film.sums.resize(film_bytes / sizeof(int64_t));
-  cl::read_buffer(runtime.queue(), job.film, film_bytes, film.sums.data());
-  cl_ulong counters[2] = {0, 0};
-  cl::read_buffer(runtime.queue(), job.stats, sizeof counters, counters);
-  stats.rays = counters[0];
-  stats.nonfinite_values = counters[1];
+  film.sums.assign(devices.front()->film_bytes / sizeof(int64_t), 0);
+  std::vector<int64_t> sums(film.sums.size());
+  for (auto& d : devices) {
+    cl::read_buffer(d->job.runtime.queue(), d->job.film, d->film_bytes, sums.data());
+    for (size_t i = 0; i < sums.size(); ++i) film.sums[i] += sums[i];
+    cl_ulong counters[2] = {0, 0};
+    cl::read_buffer(d->job.runtime.queue(), d->job.stats, sizeof counters, counters);
+    stats.rays += counters[0];
+    stats.nonfinite_values += counters[1];
+  }
   film.sample_offset = settings.sample_offset;
-  film.sample_count = done;
+  film.sample_count = stats.samples_rendered;
   film.seed = settings.seed;
   film.max_bounces = settings.max_bounces;
   film.sampler = settings.sampler;
   film.scene_hash = scene.content_hash;
   film.tree_hash = tree_content_hash(tree);
+  film.settings_hash = render_settings_hash(scene, settings);
   film.render_seconds = stats.render_seconds;
   if (stats_out) *stats_out = stats;
   return film;

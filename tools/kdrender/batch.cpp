@@ -47,19 +47,19 @@ int run_batch(const kdray::Scene& scene, const kdray::KdTree& tree, const FrameO
     const Frame& frame = frames[i];
     FrameOutcome& outcome = outcomes[i];
     auto frame_start = Clock::now();
-    if (batch.resume && frame_already_written(frame, scene, tree_hash)) {
-      outcome.status = FrameOutcome::Skipped;
-    } else {
-      try {
+    try {
+      if (batch.resume && frame_already_written(frame, scene, tree_hash)) {
+        outcome.status = FrameOutcome::Skipped;
+      } else {
         warn_if_default_light(scene, batch.scene_path, frame);
         FrameResult result = render_frame(scene, tree, frame);
         outcome.stats = frame_json(frame, result);
-      } catch (const std::exception& e) {
-        outcome.status = FrameOutcome::Failed;
-        outcome.error = e.what();
-        kdray::tool::print_error("kdrender", frame.output + " (" + batch.jobs_path + ":" +
-                                                 std::to_string(jobs[i].line_number) + "): " + outcome.error);
       }
+    } catch (const std::exception& e) {
+      outcome.status = FrameOutcome::Failed;
+      outcome.error = e.what();
+      kdray::tool::print_error("kdrender", frame.output + " (" + batch.jobs_path + ":" +
+                                               std::to_string(jobs[i].line_number) + "): " + outcome.error);
     }
     ++counts[outcome.status];
     if (report) {

@@ -109,7 +109,8 @@ void add_frame_options(CLI::App& app, FrameOptions& o) {
   app.add_flag("--no-mis", o.no_mis, "Test switch: light samples at full weight, no multiple importance sampling")
       ->group("Lights");
 
-  app.add_option("--device", o.device.device, "auto (a GPU if present, else the CPU), cpu, gpu, an index, or list")
+  app.add_option("--device", o.device.device, "auto (a GPU if present, else the CPU), cpu, gpu, an index, list; all or a comma-separated list "
+                 "of indices splits the render's samples across those devices by their speed (same image)")
       ->capture_default_str()
       ->group("Device");
   app.add_option("--local-size", o.device.local_size, "OpenCL work-group size (0: device default, 64 on CPUs)")

@@ -20,6 +20,8 @@
 #include <tool_main.h>
 
 #include <chrono>
+#include <optional>
+#include <utility>
 #include <cstdio>
 
 namespace {
@@ -46,7 +48,9 @@ void add_options(CLI::App& app, Options& o) {
   app.add_flag("--json", o.json, "Print statistics as JSON on stdout instead of the summary")->group("Output");
   app.add_flag("-q,--quiet", o.quiet, "No progress and no summary")->group("Output");
   app.add_option("--merge", o.merge_inputs,
-                 "Merge EXRs of adjacent sample ranges of one render into --output (exact: see film.h)")
+                 "Merge EXRs of sample ranges of one render (any order) into --output, exactly (film.h); "
+                 "refuses other renders, overlaps and gaps; with --spp (and --sample-offset) the ranges must "
+                 "cover exactly that")
       ->group("Output")
       ->expected(2, 1 << 16);
   app.add_option("--jobs", o.jobs_path,
@@ -74,18 +78,17 @@ int list_devices(bool json) {
   return kExitOk;
 }
 
-int merge(const Options& o) {
+// Merges the sample ranges given in any order; with --spp (and --sample-offset) they must cover
+// exactly that range.
+int merge(const Options& o, bool range_given) {
   const std::string& output = o.frame.output;
   if (output.empty()) throw UsageError("-o OUTPUT is required");
   if (!kdray::is_supported_image_path(output)) throw UsageError("-o " + output + ": use .exr, .png or .jpg");
-  kdray::Film merged = kdray::read_film_exr(o.merge_inputs.front());
-  for (size_t i = 1; i < o.merge_inputs.size(); ++i) {
-    try {
-      merged = kdray::merge_films(merged, kdray::read_film_exr(o.merge_inputs[i]));
-    } catch (const kdray::Error& error) {
-      throw kdray::Error(o.merge_inputs[i], error.what());
-    }
-  }
+  std::vector<kdray::NamedFilm> inputs;
+  for (const std::string& path : o.merge_inputs) inputs.push_back({path, kdray::read_film_exr(path)});
+  std::optional<std::pair<uint32_t, uint32_t>> expected;
+  if (range_given) expected = std::make_pair(o.frame.settings.sample_offset, o.frame.settings.spp);
+  kdray::Film merged = kdray::merge_film_ranges(std::move(inputs), expected);
   kdray::write_film_image(output, merged);
   if (o.json) {
     kdray::tool::print_json({{"output", output}, {"inputs", o.merge_inputs}, {"sample_offset", merged.sample_offset},
@@ -142,7 +145,7 @@ int main(int argc, char** argv) {
       if (o.frame.device.device == "list") return list_devices(o.json);
       if (!o.merge_inputs.empty()) {
         if (!o.scene_path.empty() || !o.jobs_path.empty()) throw UsageError("--merge takes EXR files, not a scene and tree");
-        return merge(o);
+        return merge(o, app.count("--spp") + app.count("--sample-offset") > 0);
       }
       if (o.resume && o.jobs_path.empty()) throw UsageError("--resume needs --jobs");
       if (o.scene_path.empty() || o.tree_path.empty()) throw UsageError("SCENE and TREE are required");

@@ -32,7 +32,17 @@ nlohmann::json frame_json(const Frame& frame, const FrameResult& result) {
   const kdray::RenderStats& stats = result.stats;
   const double pixel_samples = double(film.pixel_count()) * film.sample_count;
   const auto& environment = frame.settings.environment;
-  return {{"output", frame.output},
+  nlohmann::json devices = nlohmann::json::array();
+  for (const kdray::DeviceShare& share : stats.devices) {
+    devices.push_back({{"device", share.device},
+                       {"index", share.index},
+                       {"samples", share.samples},
+                       {"share", film.sample_count ? double(share.samples) / film.sample_count : 0.0},
+                       {"seconds", share.seconds},
+                       {"samples_per_second", rate(double(film.pixel_count()) * share.samples, share.seconds)}});
+  }
+  return {{"devices", devices},
+          {"output", frame.output},
           {"device", stats.device},
           {"form", frame.settings.form == kdray::RenderForm::Wavefront ? "wavefront" : "megakernel"},
           {"width", film.width},
@@ -70,6 +80,13 @@ void print_frame_summary(const Frame& frame, const FrameResult& result) {
               stats.build_source.c_str(), stats.build_seconds);
   std::printf("render %.3f s: %.2f M samples/s, %.2f M rays/s\n", stats.render_seconds,
               rate(pixel_samples, stats.render_seconds) * 1e-6, rate(double(stats.rays), stats.render_seconds) * 1e-6);
+  if (stats.devices.size() > 1) {
+    for (const kdray::DeviceShare& share : stats.devices) {
+      std::printf("  device %d (%s): %u spp (%.0f%%), %.2f M samples/s\n", share.index, share.device.c_str(),
+                  share.samples, film.sample_count ? 100.0 * share.samples / film.sample_count : 0.0,
+                  rate(double(film.pixel_count()) * share.samples, share.seconds) * 1e-6);
+    }
+  }
   if (stats.nonfinite_values) {
     std::printf("warning: %llu NaN/Inf sample values were counted as 0\n",
                 static_cast<unsigned long long>(stats.nonfinite_values));
@@ -104,7 +121,7 @@ bool frame_already_written(const Frame& frame, const kdray::Scene& scene, uint64
   return film.width == s.width && film.height == s.height && film.channels.size() == film_channels(s) &&
          film.sample_offset == s.sample_offset && film.sample_count == s.spp && film.seed == s.seed &&
          film.max_bounces == s.max_bounces && film.sampler == s.sampler && film.scene_hash == scene.content_hash &&
-         film.tree_hash == tree_hash;
+         film.tree_hash == tree_hash && film.settings_hash == kdray::render_settings_hash(scene, s);
 }
 
 }  // namespace kdrender

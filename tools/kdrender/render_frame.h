@@ -31,7 +31,7 @@ void print_frame_summary(const Frame& frame, const FrameResult& result);
 void warn_if_default_light(const kdray::Scene& scene, const std::string& scene_path, const Frame& frame);
 
 // True when frame.output exists and is this frame's complete image: an EXR with the frame's
-// size, layers, sample range, seed, bounces, sampler, scene and tree; a PNG/JPEG of its size
+// size, layers, sample range, seed, bounces, sampler, scene, tree and settings; a PNG/JPEG of its size
 // (written atomically, so a present file is never a partial write).
 bool frame_already_written(const Frame& frame, const kdray::Scene& scene, uint64_t tree_hash);
 

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace kdray {
@@ -34,6 +35,9 @@ struct Film {
   uint32_t seed = 0, max_bounces = 0;
   Sampler sampler = Sampler::Sobol;
   uint64_t scene_hash = 0, tree_hash = 0;
+  // Everything else that decides the pixels: camera, environment, default light, MIS switch
+  // (render_settings_hash in render.h); 0 in images written before it was recorded.
+  uint64_t settings_hash = 0;
   double render_seconds = 0;  // summed over merged ranges
 
   size_t pixel_count() const { return size_t(width) * height; }
@@ -46,5 +50,17 @@ struct Film {
 // The film of samples min(offsets)..: a and b must have the same size, channels, seed, bounces,
 // sampler and hashes, and adjacent sample ranges (in either order). Throws kdray::Error otherwise.
 Film merge_films(const Film& a, const Film& b);
+
+struct NamedFilm {
+  std::string name;  // the file it came from, for messages
+  Film film;
+};
+
+// Merges sample ranges of one render given in any order. Every film must be of the same render
+// as the first (size, channels, seed, bounces, sampler, scene, tree and settings hashes); sorted
+// by offset, the ranges must neither overlap nor leave a gap; with `expected_range` (first
+// sample, count) they must cover exactly it. Throws kdray::Error naming the offending film.
+Film merge_film_ranges(std::vector<NamedFilm> films,
+                       std::optional<std::pair<uint32_t, uint32_t>> expected_range = std::nullopt);
 
 }  // namespace kdray

@@ -12,7 +12,8 @@ namespace kdray {
 
 // By extension: .exr is linear float with the AOV layers, the exact fixed-point sums (channels
 // "kdray.sum.<channel>.hi/.lo", uint32) and metadata (kdray:spp, kdray:sample_offset, kdray:seed,
-// kdray:max_bounces, kdray:seconds, kdray:scene_hash, kdray:tree_hash); .png/.jpg/.jpeg are
+// kdray:max_bounces, kdray:seconds, kdray:scene_hash, kdray:tree_hash,
+// kdray:settings_hash); .png/.jpg/.jpeg are
 // 8-bit sRGB of the radiance, clamped. Written to a temporary name in the same directory and
 // renamed into place. Throws kdray::Error.
 void write_film_image(const std::string& path, const Film& film);

@@ -24,13 +24,19 @@ std::vector<DeviceInfo> list_devices();
 
 // How to choose and drive a device; one struct so every tool and test passes the same thing.
 struct DeviceSelection {
-  std::string device = "auto";  // auto (a GPU if present, else the CPU) | cpu | gpu | INDEX
+  // auto (a GPU if present, else the CPU) | cpu | gpu | INDEX; for a render also all | INDEX,INDEX,...
+  std::string device = "auto";
   size_t local_size = 0;        // work-group size; 0: the device's default (64 on CPUs)
   unsigned short_stack_size = 0;  // KD_SHORT_STACK_SIZE for the traversal; 0: the kernel default
 };
 
 // The device `selection` names; throws kdray::Error if there is none.
 DeviceInfo select_device(const DeviceSelection& selection);
+
+// The devices a selection names, each as a one-device selection: every device for "all", each
+// entry of a comma-separated list, else just `selection`. Throws kdray::Error for an unknown or
+// repeated device.
+std::vector<DeviceSelection> split_device_selection(const DeviceSelection& selection);
 
 // Where compiled programs are cached: $KDRAY_CACHE_DIR, else $XDG_CACHE_HOME/kdray, else
 // ~/.cache/kdray. KDRAY_CACHE_DIR=off disables the disk cache (an empty string is returned).

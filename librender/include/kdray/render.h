@@ -45,8 +45,16 @@ struct RenderSettings {
   RenderForm form = RenderForm::Megakernel;
 };
 
-struct RenderStats {
+// What one device did in a render across several (--device all or a list).
+struct DeviceShare {
   std::string device;
+  int index = 0;           // in list_devices()
+  uint32_t samples = 0;    // samples per pixel it rendered
+  double seconds = 0;      // time its passes took
+};
+
+struct RenderStats {
+  std::string device;           // its name, or "N devices: names" for several
   std::string kernel_options;   // the -D feature defines the program was built with
   double build_seconds = 0;     // obtaining the OpenCL program
   std::string build_source;     // "compiled", "disk cache" or "memory"
@@ -56,6 +64,7 @@ struct RenderStats {
   uint64_t rays = 0;              // closest-hit and shadow rays traced
   uint64_t nonfinite_values = 0;  // NaN/Inf sample values (counted as 0); should stay 0
   bool default_light = false;     // the scene had no light and the default environment lit it
+  std::vector<DeviceShare> devices;  // one entry per device used
 };
 
 constexpr float kDefaultLightRadiance = 1.0f;
@@ -67,7 +76,10 @@ std::shared_ptr<const Environment> render_environment(const Scene& scene, const 
 // Called after each pass with the samples per pixel done so far and the total asked for.
 using RenderProgress = std::function<void(uint32_t done, uint32_t total)>;
 
-// Renders the range; throws kdray::Error for bad settings (size, camera, bounces).
+// Renders the range; throws kdray::Error for bad settings (size, camera, bounces). With several
+// devices (device.device "all" or a list "0,1"), each renders consecutive sample ranges sized by
+// its measured speed into its own film, and the films' exact sums add up to the single-device
+// image bit for bit.
 Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
             const DeviceSelection& device, RenderStats* stats = nullptr, const RenderProgress& progress = {});
 
@@ -80,5 +92,10 @@ Camera render_camera(const Scene& scene, const RenderSettings& settings);
 
 // Identifies the tree an image was rendered with (its nodes and leaf arrays): Film::tree_hash.
 uint64_t tree_content_hash(const KdTree& tree);
+
+// Identifies what else decides a render's pixels besides the film's size, samples, seed, bounces,
+// sampler, scene and tree: the camera, the environment (its pixels included), whether the default
+// light shines and the MIS switch. Film::settings_hash; merging refuses films that differ in it.
+uint64_t render_settings_hash(const Scene& scene, const RenderSettings& settings);
 
 }  // namespace kdray

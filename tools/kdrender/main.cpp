@@ -5,13 +5,13 @@
 //   kdrender scene.kdscene scene.kdtree -o out.png --spp 64
 //   kdrender --merge a.exr b.exr -o merged.exr
 //   kdrender --device list
-#include "progress.h"
-
 #include <kdray/image_io.h>
 #include <kdray/kdtree.h>
 #include <kdray/render.h>
 #include <kdray/scene_file.h>
 
+#include <device_option.h>
+#include <progress.h>
 #include <tool_main.h>
 
 #include <chrono>
@@ -25,13 +25,8 @@
 namespace {
 
 using kdray::tool::kExitOk;
-using kdray::tool::kExitUsage;
+using kdray::tool::UsageError;
 using Clock = std::chrono::steady_clock;
-
-// A command line that parses but asks for something inconsistent: exit 2.
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
@@ -55,7 +50,8 @@ struct Options {
   std::string env_image, env_color;
   float env_strength = 1, env_rotate = 0;
   bool no_default_light = false, no_mis = false;
-  bool wavefront = false, json = false, quiet = false;
+  bool wavefront = false;
+  kdray::tool::OutputFlags flags;
   kdray::RenderSettings settings;
   kdray::DeviceSelection device;
 };
@@ -65,8 +61,6 @@ void add_options(CLI::App& app, Options& o) {
   app.add_option("TREE", o.tree_path, "Its .kdtree (from kdbuild; must match the scene)");
   app.add_option("-o,--output", o.output, "Output image: .exr (linear float), .png or .jpg (sRGB)")->group("Output");
   app.add_option("--aov", o.aovs, "Extra EXR layers, comma-separated: albedo,normal,depth")->group("Output");
-  app.add_flag("--json", o.json, "Print statistics as JSON on stdout instead of the summary")->group("Output");
-  app.add_flag("-q,--quiet", o.quiet, "No progress and no summary")->group("Output");
   app.add_option("--merge", o.merge_inputs,
                  "Merge EXRs of adjacent sample ranges of one render into --output (exact: see film.h)")
       ->group("Output")
@@ -126,9 +120,7 @@ void add_options(CLI::App& app, Options& o) {
   app.add_flag("--no-mis", o.no_mis, "Test switch: light samples at full weight, no multiple importance sampling")
       ->group("Lights");
 
-  app.add_option("--device", o.device.device, "auto (a GPU if present, else the CPU), cpu, gpu, an index, or list")
-      ->capture_default_str()
-      ->group("Device");
+  kdray::tool::add_device_option(app, o.device.device, false);
   app.add_option("--local-size", o.device.local_size, "OpenCL work-group size (0: device default, 64 on CPUs)")
       ->capture_default_str()
       ->group("Device");
@@ -190,23 +182,6 @@ void apply_aovs(Options& o) {
   }
 }
 
-int list_devices(bool json) {
-  std::vector<kdray::DeviceInfo> devices = kdray::list_devices();
-  kdray::DeviceInfo chosen = kdray::select_device({});
-  nlohmann::json list = nlohmann::json::array();
-  for (const auto& d : devices) {
-    list.push_back({{"index", d.index}, {"platform", d.platform}, {"name", d.name}, {"driver", d.driver_version},
-                    {"gpu", d.is_gpu}, {"compute_units", d.compute_units}, {"default", d.index == chosen.index}});
-    if (!json) {
-      std::printf("%d: %s / %s (%s, %u compute units, driver %s)%s\n", d.index, d.platform.c_str(), d.name.c_str(),
-                  d.is_gpu ? "GPU" : "CPU", d.compute_units, d.driver_version.c_str(),
-                  d.index == chosen.index ? "  [default]" : "");
-    }
-  }
-  if (json) kdray::tool::print_json({{"devices", list}});
-  return kExitOk;
-}
-
 int merge(const Options& o) {
   kdray::Film merged = kdray::read_film_exr(o.merge_inputs.front());
   for (size_t i = 1; i < o.merge_inputs.size(); ++i) {
@@ -217,10 +192,10 @@ int merge(const Options& o) {
     }
   }
   kdray::write_film_image(o.output, merged);
-  if (o.json) {
+  if (o.flags.json) {
     kdray::tool::print_json({{"output", o.output}, {"inputs", o.merge_inputs}, {"sample_offset", merged.sample_offset},
                              {"spp", merged.sample_count}, {"mean_radiance", merged.mean_radiance()}});
-  } else if (!o.quiet) {
+  } else if (!o.flags.quiet) {
     std::printf("merged %zu images: samples %u..%u -> %s\n", o.merge_inputs.size(), merged.sample_offset,
                 merged.sample_offset + merged.sample_count - 1, o.output.c_str());
   }
@@ -238,14 +213,17 @@ int render(Options& o) {
   double load_seconds = seconds_since(load_start);
 
   if (kdray::render_environment(scene, o.settings) && !o.settings.environment) {
-    std::fprintf(stderr, "kdrender: warning: %s\n", (o.scene_path + ": the scene has no light (no emissive triangles, no punctual "
+    kdray::tool::print_warning("kdrender", o.scene_path + ": the scene has no light (no emissive triangles, no punctual "
                                            "lights) and no --env: lighting it with the default light, a uniform white "
-                                           "environment of radiance 1 (--no-default-light renders black)").c_str());
+                                           "environment of radiance 1 (--no-default-light renders black)");
   }
-  kdrender::ProgressReport progress(!o.quiet && !o.json);
+  kdray::tool::ProgressBar progress("kdrender", !o.flags.quiet);
   kdray::RenderStats stats;
   kdray::Film film = kdray::render(scene, tree, o.settings, o.device, &stats,
-                                   [&](uint32_t done, uint32_t total) { progress.update(done, total); });
+                                   [&](uint32_t done, uint32_t total) {
+                                     progress.update(double(done) / total, std::to_string(done) + "/" +
+                                                                               std::to_string(total) + " spp");
+                                   });
   progress.finish();
   auto write_start = Clock::now();
   kdray::write_film_image(o.output, film);
@@ -254,7 +232,7 @@ int render(Options& o) {
   double pixel_samples = double(film.pixel_count()) * film.sample_count;
   double samples_per_second = stats.render_seconds > 0 ? pixel_samples / stats.render_seconds : 0;
   double rays_per_second = stats.render_seconds > 0 ? double(stats.rays) / stats.render_seconds : 0;
-  if (o.json) {
+  if (o.flags.json) {
     kdray::tool::print_json({{"output", o.output},
                              {"device", stats.device},
                              {"form", o.wavefront ? "wavefront" : "megakernel"},
@@ -282,7 +260,7 @@ int render(Options& o) {
                              {"rays_per_second", rays_per_second},
                              {"mean_radiance", film.mean_radiance()},
                              {"nonfinite_values", stats.nonfinite_values}});
-  } else if (!o.quiet) {
+  } else if (!o.flags.quiet) {
     std::printf("%s: %ux%u, %u spp (samples %u..%u), %u max bounces, %s sampler, seed %u\n", o.output.c_str(),
                 film.width, film.height, film.sample_count, film.sample_offset,
                 film.sample_offset + film.sample_count - 1, film.max_bounces, kdray::sampler_name(film.sampler),
@@ -301,34 +279,28 @@ int render(Options& o) {
 
 int main(int argc, char** argv) {
   CLI::App app{"Renders a .kdscene with its .kdtree on an OpenCL device (path tracing), or merges\n"
-               "EXRs of sample ranges. Exit status: 0 ok, 1 failure, 2 bad arguments."};
-  app.name("kdrender");
-  app.set_version_flag("--version", std::string("kdrender ") + KDRAY_VERSION);
+               "EXRs of sample ranges."};
   Options o;
+  kdray::tool::add_contract(app, "kdrender", o.flags, "Print statistics as JSON on stdout instead of the summary");
   add_options(app, o);
 
   return kdray::tool::run(app, argc, argv, [&]() -> int {
-    try {
-      if (o.device.device == "list") return list_devices(o.json);
-      if (o.output.empty()) throw UsageError("-o OUTPUT is required");
-      if (!kdray::is_supported_image_path(o.output)) throw UsageError("-o " + o.output + ": use .exr, .png or .jpg");
-      if (!o.merge_inputs.empty()) {
-        if (!o.scene_path.empty()) throw UsageError("--merge takes EXR files, not a scene and tree");
-        return merge(o);
-      }
-      if (o.scene_path.empty() || o.tree_path.empty()) throw UsageError("SCENE and TREE are required");
-      if (!o.aovs.empty()) apply_aovs(o);
-      bool any_aov = o.settings.aov_albedo || o.settings.aov_normal || o.settings.aov_depth;
-      if (any_aov && std::filesystem::path(o.output).extension() != ".exr") {
-        throw UsageError("--aov needs an .exr output");
-      }
-      apply_camera_options(o);
-      if (o.wavefront) o.settings.form = kdray::RenderForm::Wavefront;
-      o.settings.sampler = *kdray::parse_sampler(o.sampler);
-      return render(o);
-    } catch (const UsageError& error) {
-      kdray::tool::print_error("kdrender", std::string(error.what()) + " (see --help)");
-      return kExitUsage;
+    const kdray::tool::DeviceKind device = kdray::tool::device_kind(o.device.device);
+    if (device == kdray::tool::DeviceKind::List) return kdray::tool::list_opencl_devices(o.flags.json);
+    if (device == kdray::tool::DeviceKind::All) throw UsageError("--device all: rendering on several devices at once is not built yet");
+    if (o.output.empty()) throw UsageError("-o OUTPUT is required");
+    if (!kdray::is_supported_image_path(o.output)) throw UsageError("-o " + o.output + ": use .exr, .png or .jpg");
+    if (!o.merge_inputs.empty()) {
+      if (!o.scene_path.empty()) throw UsageError("--merge takes EXR files, not a scene and tree");
+      return merge(o);
     }
+    if (o.scene_path.empty() || o.tree_path.empty()) throw UsageError("SCENE and TREE are required");
+    if (!o.aovs.empty()) apply_aovs(o);
+    bool any_aov = o.settings.aov_albedo || o.settings.aov_normal || o.settings.aov_depth;
+    if (any_aov && std::filesystem::path(o.output).extension() != ".exr") throw UsageError("--aov needs an .exr output");
+    apply_camera_options(o);
+    if (o.wavefront) o.settings.form = kdray::RenderForm::Wavefront;
+    o.settings.sampler = *kdray::parse_sampler(o.sampler);
+    return render(o);
   });
 }

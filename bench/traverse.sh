@@ -56,7 +56,7 @@ for entry in "${meshes[@]}"; do
       e+=("$("$embree" "$scene" "$ray_file" "$threads" | sed 's/.*: \([0-9.]*\) Mrays.*/\1/')")
       "$kdtrace" "$scene" "$tree" --rays "$ray_file" --threads "$threads" --json > "$work/cpu.json"
       c+=("$(field "$work/cpu.json" mrays_per_s)")
-      "$kdtrace" "$scene" "$tree" --rays "$ray_file" --device opencl --opencl-device cpu --json > "$work/pocl.json"
+      "$kdtrace" "$scene" "$tree" --rays "$ray_file" --device cpu --json > "$work/pocl.json"
       p+=("$(field "$work/pocl.json" mrays_per_s)")
       if [[ -n "$baseline" ]]; then
         "$baseline/tools/kdtrace/kdtrace" "$scene" "$tree" --rays "$ray_file" --threads "$threads" --json > "$work/before.json"

@@ -67,7 +67,7 @@ std::vector<std::string> default_channels(const FloatImage& test, const FloatIma
                           int(in_reference - reference.channel_names.begin()) == reference.alpha_channel;
     if (!is_alpha) shared_without_alpha.push_back(name);
   }
-  if (shared.empty()) throw Error("", "the images have no channel name in common (use --channels)");
+  if (shared.empty()) throw Error("", "the images have no channel name in common");
   return shared_without_alpha.empty() ? shared : shared_without_alpha;
 }
 

@@ -81,14 +81,14 @@ std::pair<DeviceInfo, cl_device_id> resolve(const DeviceSelection& selection) {
   }
   if (choice == "gpu" || choice == "cpu") {
     auto found = first_of(choice == "gpu");
-    if (found == devices.end()) throw Error("", "--device " + choice + ": no such device (see --device list)");
+    if (found == devices.end()) throw Error("", "OpenCL device \"" + choice + "\": there is none of that type");
     return *found;
   }
   char* end = nullptr;
   long index = std::strtol(choice.c_str(), &end, 10);
   if (choice.empty() || *end != '\0' || index < 0 || index >= static_cast<long>(devices.size())) {
-    throw Error("", "--device " + choice + ": expected auto, cpu, gpu, all, an index below " +
-                        std::to_string(devices.size()) + " or a list of them, comma-separated (see --device list)");
+    throw Error("", "OpenCL device \"" + choice + "\": expected auto, cpu, gpu or an index below " +
+                        std::to_string(devices.size()));
   }
   return devices[static_cast<size_t>(index)];
 }
@@ -123,7 +123,7 @@ std::vector<DeviceSelection> split_device_selection(const DeviceSelection& selec
     one.device = name;
     const int index = select_device(one).index;
     if (std::find(indices.begin(), indices.end(), index) != indices.end()) {
-      throw Error("", "--device " + selection.device + ": device " + std::to_string(index) + " is named twice");
+      throw Error("", "OpenCL devices \"" + selection.device + "\": device " + std::to_string(index) + " is named twice");
     }
     indices.push_back(index);
     selections.push_back(one);
@@ -171,7 +171,7 @@ Buffer Runtime::buffer(size_t bytes, const void* data, cl_mem_flags flags) {
 size_t Runtime::local_size(const DeviceSelection& selection) const {
   size_t wanted = selection.local_size ? selection.local_size : 64;
   if (wanted > info_.max_work_group_size) {
-    throw Error("", "--local-size " + std::to_string(wanted) + " exceeds the device's limit of " +
+    throw Error("", "work-group size " + std::to_string(wanted) + " exceeds the device's limit of " +
                         std::to_string(info_.max_work_group_size));
   }
   return wanted;

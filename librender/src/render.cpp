@@ -72,13 +72,13 @@ void check_settings(const RenderSettings& s) {
     throw Error("", "image size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
                         " is out of range (1..16384 per side)");
   }
-  if (s.spp == 0) throw Error("", "--spp must be at least 1");
-  if (uint64_t(s.sample_offset) + s.spp > 0xFFFFFFFFull) throw Error("", "--sample-offset + --spp exceeds 2^32");
+  if (s.spp == 0) throw Error("", "samples per pixel must be at least 1");
+  if (uint64_t(s.sample_offset) + s.spp > 0xFFFFFFFFull) throw Error("", "first sample index + samples per pixel exceeds 2^32");
   if (s.max_bounces > RenderSettings::kMaxBouncesLimit) {
-    throw Error("", "--max-bounces " + std::to_string(s.max_bounces) + " exceeds " +
+    throw Error("", "max bounces " + std::to_string(s.max_bounces) + " exceeds " +
                         std::to_string(RenderSettings::kMaxBouncesLimit));
   }
-  if (!(s.time_limit_seconds >= 0)) throw Error("", "--time-limit must be >= 0");
+  if (!(s.time_limit_seconds >= 0)) throw Error("", "time limit must be >= 0 seconds");
 }
 
 // Next-event estimation picks each kind of light that gives light with the same probability.
@@ -146,7 +146,7 @@ Camera render_camera(const Scene& scene, const RenderSettings& settings) {
     throw Error("", "degenerate camera: position, target and up must be finite, distinct and not collinear");
   }
   if (!(camera.vertical_fov_degrees > 0 && camera.vertical_fov_degrees < 180)) {
-    throw Error("", "--fov must be between 0 and 180 degrees");
+    throw Error("", "vertical field of view must be between 0 and 180 degrees");
   }
   return camera;
 }

@@ -65,37 +65,37 @@ TEST_F(KdCompareCli, JsonNamesTheOverallFigures) {
   EXPECT_NEAR(document["per_channel"]["R"]["rmse"].get<double>(), 0.25, 1e-9);
 }
 
-TEST_F(KdCompareCli, ErrorAboveThresholdExitsOne) {
+TEST_F(KdCompareCli, ErrorAboveThresholdExitsThree) {
   EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--threshold rmse=0.2").exit_code, 0);
-  EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--threshold rmse=0.1").exit_code, 1);
+  EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--threshold rmse=0.1").exit_code, 3);
   EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--threshold max_abs=0.25").exit_code, 0);  // equal is within
-  EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--threshold rmse=0.2 --threshold mae=0.01").exit_code, 1);
+  EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--threshold rmse=0.2 --threshold mae=0.01").exit_code, 3);
 }
 
 TEST_F(KdCompareCli, PsnrThresholdFailsWhenBelow) {
   EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--threshold psnr=16").exit_code, 0);
-  EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--threshold psnr=17").exit_code, 1);
+  EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--threshold psnr=17").exit_code, 3);
 }
 
 TEST_F(KdCompareCli, NonFiniteThresholdCountsTestPixels) {
   std::vector<float> pixels = constant_pixels(4, 4, {0.5f, 0.5f, 0.5f});
   pixels[4] = std::numeric_limits<float>::quiet_NaN();
   kdray::test::write_test_image(path("nan.exr"), 4, 4, {"R", "G", "B"}, pixels);
-  EXPECT_EQ(kdcompare("nan.exr", "reference.exr", "--threshold nonfinite=0").exit_code, 1);
+  EXPECT_EQ(kdcompare("nan.exr", "reference.exr", "--threshold nonfinite=0").exit_code, 3);
   EXPECT_EQ(kdcompare("nan.exr", "reference.exr", "--threshold nonfinite=1").exit_code, 0);
   EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--threshold nonfinite=0").exit_code, 0);
 }
 
-TEST_F(KdCompareCli, SizeMismatchExitsThree) {
-  EXPECT_EQ(kdcompare("test.exr", "small.exr").exit_code, 3);
-  EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--channels Z").exit_code, 3);
+TEST_F(KdCompareCli, SizeMismatchFails) {
+  EXPECT_EQ(kdcompare("test.exr", "small.exr").exit_code, 1);
+  EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--channels Z").exit_code, 1);
 }
 
-TEST_F(KdCompareCli, UnreadableFileExitsFour) {
+TEST_F(KdCompareCli, UnreadableFileFails) {
   { std::ofstream(path("garbage.exr")) << "not an image"; }
-  EXPECT_EQ(kdcompare("test.exr", "missing.exr").exit_code, 4);
-  EXPECT_EQ(kdcompare("garbage.exr", "reference.exr").exit_code, 4);
-  EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--heatmap " + shell_quoted(path("no-dir/map.png").string())).exit_code, 4);
+  EXPECT_EQ(kdcompare("test.exr", "missing.exr").exit_code, 1);
+  EXPECT_EQ(kdcompare("garbage.exr", "reference.exr").exit_code, 1);
+  EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--heatmap " + shell_quoted(path("no-dir/map.png").string())).exit_code, 1);
 }
 
 TEST_F(KdCompareCli, BadArgumentsExitTwo) {
@@ -120,6 +120,7 @@ TEST_F(KdCompareCli, HeatmapIsWrittenAsAPng) {
 TEST_F(KdCompareCli, HelpDocumentsExitCodesAndPsnrPeak) {
   const ToolRun run = run_command(shell_quoted(kdray::test::tool_path("kdcompare")) + " --help");
   ASSERT_EQ(run.exit_code, 0);
-  EXPECT_NE(run.output.find("Exit codes"), std::string::npos);
+  EXPECT_NE(run.output.find("Exit status"), std::string::npos);
+  EXPECT_NE(run.output.find("  3  compared, and a metric is worse"), std::string::npos);
   EXPECT_NE(run.output.find("peak"), std::string::npos);
 }

@@ -1,7 +1,9 @@
-// One table of bad inputs, run through every tool: a missing file, a file of the wrong kind, a
-// damaged or truncated file, an out-of-range option. README's contract: exit 1 for a failure
-// (a missing, unreadable or damaged input included), 2 for a malformed command line, and one
-// line on stderr, "tool: error: <file>: <what>", naming the file (or the option) at fault.
+// One table of cases, run through every tool: --help, --version, then bad inputs (a missing
+// file, a file of the wrong kind, a damaged or truncated file, an out-of-range option).
+// README's contract: exit 0 with the answer on stdout and nothing on stderr for --help and
+// --version; exit 1 for a failure (a missing, unreadable or damaged input included), 2 for a
+// malformed command line, and one line on stderr, "tool: error: <file>: <what>", naming the file
+// (or the option) at fault, whether or not --quiet or --json is given.
 #include "subprocess.h"
 #include "test_corpus.h"
 
@@ -9,7 +11,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <sstream>
 
 namespace kdray {
@@ -23,22 +24,10 @@ struct BadInput {
   std::string name;               // "tool/case"
   std::vector<std::string> args;  // after the tool; {DIR} is the fixture's folder
   int exit_code;                  // what README's contract asks for
-  std::string must_mention;       // the file (or option) the message must name
+  std::string must_mention;       // what stdout (exit 0) or the error line (otherwise) must contain
 };
 
-// Cases where a tool answers differently from README today. The tool mains belong to the CLI
-// contract work; these are reported there, and this list keeps the test honest about them:
-// a listed case that starts to agree fails the test until it is removed from here.
-const std::set<std::string> kKnownDisagreements = {
-    "kdbuild/missing scene",     // CLI11's ExistingFile check makes a missing input a usage error (2)
-    "kdtrace/missing scene",     // same
-    "kdtrace/missing rays",      // same
-    "kdtrace/negative count",    // -5 wraps to a huge count: "vector::reserve", exit 1, no option named
-    "kdcompare/missing test image",   // exit 4 (its own "file error" code), README says 1
-    "kdcompare/wrong kind",           // same
-    "kdcompare/truncated reference",  // same
-    "kdinfo/damaged scene",      // exit 1, but the verdict is on stdout and nothing on stderr
-};
+const char* const kTools[] = {"kdconvert", "kdbuild", "kdrender", "kdtrace", "kdinfo", "kdcompare"};
 
 std::string slurp(const fs::path& path) {
   std::ifstream file(path, std::ios::binary);
@@ -89,7 +78,12 @@ fs::path* BadInputTable::dir_ = nullptr;
 
 std::vector<BadInput> table() {
   const std::string scene = "{DIR}/good.kdscene", tree = "{DIR}/good.kdtree", out = "{DIR}/out";
-  return {
+  std::vector<BadInput> cases;
+  for (const std::string tool : kTools) {
+    cases.push_back({tool + "/help", {"--help"}, 0, "--json"});
+    cases.push_back({tool + "/version", {"--version"}, 0, tool + " " + KDRAY_VERSION});
+  }
+  const std::vector<BadInput> bad = {
       {"kdconvert/missing input", {"{DIR}/missing.obj", out + ".kdscene"}, 1, "missing.obj"},
       {"kdconvert/wrong kind", {"{DIR}/good.kdtree", out + ".kdscene"}, 1, "good.kdtree"},
       {"kdconvert/truncated ply", {"{DIR}/truncated.ply", out + ".kdscene"}, 1, "truncated.ply"},
@@ -130,10 +124,20 @@ std::vector<BadInput> table() {
       {"kdcompare/truncated reference", {"{DIR}/good.exr", "{DIR}/truncated-exr"}, 1, "truncated-exr"},
       {"kdcompare/bad threshold", {"{DIR}/good.exr", "{DIR}/good.exr", "--threshold", "relmse=abc"}, 2, "threshold"},
   };
+  for (const BadInput& c : bad) {
+    cases.push_back(c);
+    // --quiet and --json change what a tool prints on success, never how it reports a failure.
+    for (const char* flag : {"--quiet", "--json"}) {
+      BadInput with_flag = c;
+      with_flag.name += std::string(" ") + flag;
+      with_flag.args.push_back(flag);
+      cases.push_back(with_flag);
+    }
+  }
+  return cases;
 }
 
 TEST_F(BadInputTable, EveryToolAnswersWithOneLineAndTheDocumentedExitCode) {
-  std::vector<std::string> disagreements;
   for (const BadInput& bad : table()) {
     const std::string tool = bad.name.substr(0, bad.name.find('/'));
     std::vector<std::string> argv{tool_path(tool)};
@@ -146,25 +150,20 @@ TEST_F(BadInputTable, EveryToolAnswersWithOneLineAndTheDocumentedExitCode) {
     // Never a crash or a hang, whatever the case.
     ASSERT_TRUE(result.exited) << "signal " << result.signal << (result.timed_out ? " (timed out)" : "") << "\n"
                                << result.err;
+    EXPECT_EQ(result.exit_code, bad.exit_code) << result.err;
+    if (bad.exit_code == 0) {
+      EXPECT_NE(result.out.find(bad.must_mention), std::string::npos) << result.out;
+      EXPECT_EQ(result.err, "");
+      continue;
+    }
     std::vector<std::string> lines;
     std::istringstream err(result.err);
     for (std::string line; std::getline(err, line);)
       if (!line.empty()) lines.push_back(line);
-    EXPECT_NE(result.exit_code, 0);
-    const std::string first = lines.empty() ? std::string("(nothing on stderr)") : lines[0];
-    const bool agrees = result.exit_code == bad.exit_code && lines.size() == 1 &&
-                        first.rfind(tool + ": error: ", 0) == 0 && first.find(bad.must_mention) != std::string::npos;
-    const bool known = kKnownDisagreements.count(bad.name) != 0;
-    if (!agrees) {
-      disagreements.push_back(bad.name + ": exit " + std::to_string(result.exit_code) + " (README: " +
-                              std::to_string(bad.exit_code) + "), " + std::to_string(lines.size()) +
-                              " stderr lines: " + first);
-      EXPECT_TRUE(known) << disagreements.back();
-    } else {
-      EXPECT_FALSE(known) << bad.name << " now agrees with README: remove it from kKnownDisagreements";
-    }
+    ASSERT_EQ(lines.size(), 1u) << result.err;
+    EXPECT_EQ(lines[0].rfind(tool + ": error: ", 0), 0u) << lines[0];
+    EXPECT_NE(lines[0].find(bad.must_mention), std::string::npos) << lines[0];
   }
-  for (const std::string& line : disagreements) std::printf("known disagreement: %s\n", line.c_str());
 }
 
 }  // namespace

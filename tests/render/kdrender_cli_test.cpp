@@ -124,6 +124,7 @@ TEST_F(KdrenderCli, ListsDevices) {
   EXPECT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("[default]"), std::string::npos) << run.output;
   EXPECT_EQ(kdrender(cornell(path("nodevice.png"), "--device 99")).exit_code, 1);
+  EXPECT_EQ(kdrender(cornell(path("host.png"), "--device host")).exit_code, 2);  // kdrender runs on OpenCL only
 }
 
 TEST_F(KdrenderCli, WithoutAnOpenClPlatformSaysHowToInstallPocl) {

@@ -1,6 +1,12 @@
-// The command-line contract every kdray tool shares (GUIDE section 8):
-//   errors on stderr as "<tool>: error: <file>: <what>", exit 0 ok, 1 failure, 2 usage;
-//   --json prints machine-readable output on stdout instead of the human summary.
+// The command-line contract every kdray tool shares, kept here and nowhere else:
+//   - exit status: 0 ok; 1 failure (a missing, unreadable or damaged input file included: the
+//     command line was fine, the data was not); 2 usage (the command line itself is malformed or
+//     inconsistent); 3 only from kdcompare: the images were compared and a threshold was missed;
+//   - errors on stderr as one line "<tool>: error: <file>: <what>", warnings as "<tool>: warning: ";
+//   - --help (grouped, with defaults), --version, --json (machine-readable output on stdout,
+//     keys from the vocabulary in README.md) and --quiet (nothing but errors and warnings);
+//   - progress on stderr only when stderr is a terminal (progress.h).
+// Libraries throw kdray::Error describing the data; only the tools speak of flags.
 #pragma once
 
 #include <kdray/error.h>
@@ -16,17 +22,49 @@
 
 namespace kdray::tool {
 
-enum ExitCode : int { kExitOk = 0, kExitFailure = 1, kExitUsage = 2 };
+enum ExitCode : int { kExitOk = 0, kExitFailure = 1, kExitUsage = 2, kExitAboveThreshold = 3 };
 
-inline void print_error(const char* tool_name, const std::string& message) {
-  std::fprintf(stderr, "%s: error: %s\n", tool_name, message.c_str());
+constexpr const char* kExitStatusHelp =
+    "Exit status: 0 ok; 1 failure (including a missing, unreadable or damaged input file); "
+    "2 bad command line.";
+
+// A command line that parses but asks for something inconsistent (exit 2). Tools throw it from
+// their body; CLI::ValidationError thrown there is treated the same way.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+inline void print_error(const std::string& tool_name, const std::string& message) {
+  std::fprintf(stderr, "%s: error: %s\n", tool_name.c_str(), message.c_str());
+}
+
+inline void print_warning(const std::string& tool_name, const std::string& message) {
+  std::fprintf(stderr, "%s: warning: %s\n", tool_name.c_str(), message.c_str());
+}
+
+// The flags every tool has besides --help and --version.
+struct OutputFlags {
+  bool json = false;
+  bool quiet = false;
+};
+
+// Names the tool, adds --version, --json and --quiet, and puts the exit codes under --help
+// (`exit_help` replaces the common line for a tool with codes of its own).
+inline void add_contract(CLI::App& app, const std::string& tool_name, OutputFlags& flags, const std::string& json_help,
+                         const std::string& exit_help = kExitStatusHelp) {
+  app.name(tool_name);
+  app.set_version_flag("--version", tool_name + " " + KDRAY_VERSION);
+  app.add_flag("--json", flags.json, json_help)->group("Output");
+  app.add_flag("-q,--quiet", flags.quiet, "Print nothing but errors and warnings (the exit status tells the result)")
+      ->group("Output");
+  app.footer(exit_help);
 }
 
 // Parses the command line with `app` and runs `body`, mapping every way a tool can fail to
 // one line on stderr and the documented exit code. `body` returns the exit code.
 template <typename Body>
 int run(CLI::App& app, int argc, char** argv, Body&& body) {
-  const char* tool_name = app.get_name().c_str();
+  const std::string tool_name = app.get_name();
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -41,6 +79,12 @@ int run(CLI::App& app, int argc, char** argv, Body&& body) {
   }
   try {
     return body();
+  } catch (const UsageError& error) {
+    print_error(tool_name, std::string(error.what()) + " (see --help)");
+    return kExitUsage;
+  } catch (const CLI::ValidationError& error) {
+    print_error(tool_name, std::string(error.what()) + " (see --help)");
+    return kExitUsage;
   } catch (const kdray::Error& error) {
     print_error(tool_name, error.what());
   } catch (const std::bad_alloc&) {

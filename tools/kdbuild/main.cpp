@@ -3,70 +3,26 @@
 #include <kdray/kdtree.h>
 #include <kdray/scene_file.h>
 
+#include "process_stats.h"
+#include "progress.h"
 #include "tool_main.h"
+#include "tree_json.h"
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
-#include <sys/resource.h>
-#include <unistd.h>
-
-namespace {
-
-// User + system CPU seconds of this process so far: with the wall time, it tells a slow
-// build from a busy machine.
-double cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
-double peak_memory_mib() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
-}
-
-// A progress bar on stderr for builds that take more than a second, drawn only when stderr is
-// a terminal: redrawing a line needs carriage returns, which do not belong in a log.
-class ProgressBar {
- public:
-  explicit ProgressBar(bool enabled)
-      : enabled_(enabled && isatty(fileno(stderr))), start_(std::chrono::steady_clock::now()) {}
-  void update(double fraction) {
-    if (!enabled_ || std::chrono::steady_clock::now() - start_ < std::chrono::seconds(1)) return;
-    constexpr int kWidth = 40;
-    const int filled = std::clamp(static_cast<int>(fraction * kWidth), 0, kWidth);
-    std::fprintf(stderr, "\rkdbuild: [%s%s] %3d%%", std::string(filled, '#').c_str(),
-                 std::string(kWidth - filled, ' ').c_str(), static_cast<int>(fraction * 100.0));
-    std::fflush(stderr);
-    shown_ = true;
-  }
-  void finish() {
-    if (shown_) std::fprintf(stderr, "\n");
-  }
-
- private:
-  bool enabled_;
-  bool shown_ = false;
-  std::chrono::steady_clock::time_point start_;
-};
-
-}  // namespace
-
 int main(int argc, char** argv) {
   using kdray::BuildSettings;
-  CLI::App app{"kdbuild: build the SAH k-d tree of a .kdscene and write it as a .kdtree", "kdbuild"};
-  app.set_version_flag("--version", std::string("kdbuild ") + KDRAY_VERSION);
+  CLI::App app{"kdbuild: build the SAH k-d tree of a .kdscene and write it as a .kdtree"};
+  kdray::tool::OutputFlags output;
+  kdray::tool::add_contract(app, "kdbuild", output, "Print the statistics as JSON on stdout");
   std::string scene_path, tree_path;
   BuildSettings settings;
   unsigned threads = 0;
-  bool json = false, quiet = false, no_perfect_splits = false;
-  app.add_option("SCENE", scene_path, "Input scene (.kdscene)")->required()->check(CLI::ExistingFile);
+  bool no_perfect_splits = false;
+  app.add_option("SCENE", scene_path, "Input scene (.kdscene)")->required();
   app.add_option("OUTPUT", tree_path, "Output tree (.kdtree), written atomically")->required();
   app.add_option("--kt", settings.traversal_cost, "Cost of traversing an inner node (K_T)")
       ->capture_default_str()->check(CLI::NonNegativeNumber)->group("Cost model");
@@ -83,8 +39,6 @@ int main(int argc, char** argv) {
       ->group("Tree");
   app.add_option("--threads", threads, "Build threads; 0: all cores (the tree is the same for any count)")
       ->capture_default_str()->group("Run");
-  app.add_flag("--json", json, "Print the statistics as JSON on stdout")->group("Output");
-  app.add_flag("-q,--quiet", quiet, "No progress on stderr")->group("Output");
 
   return kdray::tool::run(app, argc, argv, [&] {
     settings.perfect_splits = !no_perfect_splits;
@@ -92,14 +46,14 @@ int main(int argc, char** argv) {
     const kdray::Scene scene = kdray::read_scene(scene_path);
     const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    ProgressBar progress(!quiet);
+    kdray::tool::ProgressBar progress("kdbuild", !output.quiet);
     const auto build_start = std::chrono::steady_clock::now();
-    const double cpu_start = cpu_seconds();
+    const double cpu_start = kdray::tool::cpu_seconds();
     kdray::BuildTimings phases;
     const kdray::KdTree tree = kdray::build_kdtree(
         scene, settings, {threads, [&](double fraction) { progress.update(fraction); }, &phases});
     const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
-    const double build_cpu_seconds = cpu_seconds() - cpu_start;
+    const double build_cpu_seconds = kdray::tool::cpu_seconds() - cpu_start;
     progress.finish();
     const auto write_start = std::chrono::steady_clock::now();
     kdray::write_tree(tree_path, tree);
@@ -108,25 +62,19 @@ int main(int argc, char** argv) {
     const uint64_t nodes = tree.nodes.size();
 
     const kdray::TreeStats& s = tree.stats;
-    if (json) {
-      nlohmann::json out = {
-          {"scene", scene_path}, {"tree", tree_path}, {"scene_hash", kdray::hash_hex(tree.scene_hash)},
-          {"triangles", s.triangles}, {"sah_cost", s.sah_cost}, {"nodes", nodes}, {"inner_nodes", s.inner_nodes},
-          {"leaves", s.leaves}, {"empty_leaves", s.empty_leaves}, {"max_depth", s.max_depth},
-          {"mean_leaf_depth", s.mean_leaf_depth}, {"mean_triangles_per_leaf", s.mean_triangles_per_leaf},
-          {"references_per_triangle", s.references_per_triangle}, {"build_seconds", build_seconds}, {"build_cpu_seconds", build_cpu_seconds},
-          {"load_seconds", load_seconds}, {"write_seconds", write_seconds},
-          {"phase_seconds", {{"load", load_seconds}, {"prepare", phases.prepare}, {"events", phases.events},
-                             {"subdivide", phases.subdivide}, {"assemble", phases.assemble},
-                             {"statistics", phases.statistics}, {"write", write_seconds}}},
-          {"peak_memory_mib", peak_memory_mib()}, {"tree_bytes", tree_bytes},
-          {"settings", {{"kt", tree.settings.traversal_cost}, {"ki", tree.settings.intersection_cost},
-                        {"empty_bonus", tree.settings.empty_bonus},
-                        {"max_depth", tree.settings.resolved_max_depth(s.triangles)},
-                        {"perfect_splits", tree.settings.perfect_splits}}}};
+    if (output.json) {
+      nlohmann::json out = kdray::tool::tree_stats_json(tree);
+      out.update({{"scene", scene_path}, {"tree", tree_path}, {"scene_hash", kdray::hash_hex(tree.scene_hash)},
+                  {"build_seconds", build_seconds}, {"build_cpu_seconds", build_cpu_seconds},
+                  {"load_seconds", load_seconds}, {"write_seconds", write_seconds},
+                  {"phase_seconds", {{"load", load_seconds}, {"prepare", phases.prepare}, {"events", phases.events},
+                                     {"subdivide", phases.subdivide}, {"assemble", phases.assemble},
+                                     {"statistics", phases.statistics}, {"write", write_seconds}}},
+                  {"peak_memory_mib", kdray::tool::peak_memory_mib()}, {"tree_bytes", tree_bytes}});
       kdray::tool::print_json(out);
       return kdray::tool::kExitOk;
     }
+    if (output.quiet) return kdray::tool::kExitOk;
     const double empty_share = s.leaves ? 100.0 * static_cast<double>(s.empty_leaves) / s.leaves : 0.0;
     std::printf("%s -> %s\n", scene_path.c_str(), tree_path.c_str());
     std::printf("  triangles                %llu\n", static_cast<unsigned long long>(s.triangles));
@@ -143,7 +91,7 @@ int main(int argc, char** argv) {
     std::printf("  phases                   prepare %.3f, events %.3f, subdivide %.3f, assemble %.3f, statistics %.3f, "
                 "write %.3f s\n",
                 phases.prepare, phases.events, phases.subdivide, phases.assemble, phases.statistics, write_seconds);
-    std::printf("  peak memory              %.1f MiB (scene, build and tree)\n", peak_memory_mib());
+    std::printf("  peak memory              %.1f MiB (scene, build and tree)\n", kdray::tool::peak_memory_mib());
     std::printf("  tree size                %.1f MiB (%llu nodes)\n", static_cast<double>(tree_bytes) / (1024.0 * 1024.0),
                 static_cast<unsigned long long>(nodes));
     return kdray::tool::kExitOk;

@@ -15,21 +15,13 @@ namespace {
 using kdray::CompareResult;
 using kdray::ErrorMetrics;
 
-// Graded exit codes in the manner of OpenImageIO's idiff; 0 and 2 follow the suite's contract.
-enum CompareExit : int {
-  kExitWithinThresholds = 0,
-  kExitAboveThreshold = 1,
-  kExitImagesDiffer = 3,  // different sizes, or the compared channels are missing
-  kExitFileError = 4,     // an image cannot be read, or the heat map cannot be written
-};
-
 constexpr const char* kExitCodeHelp =
-    "Exit codes:\n"
+    "Exit status:\n"
     "  0  compared; every --threshold met\n"
-    "  1  a metric is worse than its --threshold (for psnr: below it; for the others: above it)\n"
+    "  1  failure: an image is missing or unreadable, the images differ in size or lack the compared\n"
+    "     channels, or the heat map cannot be written\n"
     "  2  bad command line\n"
-    "  3  the images differ in size, or lack the compared channels\n"
-    "  4  an image cannot be read, or the heat map cannot be written\n"
+    "  3  compared, and a metric is worse than its --threshold (psnr: below it; the others: above it)\n"
     "Metrics (over pixels finite in both images; NaN/Inf pixels are counted, not compared):\n"
     "  rmse     sqrt(mean (t-r)^2)\n"
     "  relmse   mean (t-r)^2 / (r^2 + 0.01)\n"
@@ -112,15 +104,14 @@ void print_summary(const std::string& test_path, const std::string& reference_pa
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"kdcompare: error of a rendered image against a reference", "kdcompare"};
-  app.set_version_flag("--version", std::string("kdcompare ") + KDRAY_VERSION);
-  app.footer(kExitCodeHelp);
+  CLI::App app{"kdcompare: error of a rendered image against a reference"};
+  kdray::tool::OutputFlags output;
+  kdray::tool::add_contract(app, "kdcompare", output, "Print JSON on stdout instead of the table", kExitCodeHelp);
 
   std::string test_path, reference_path, heatmap_path;
   std::vector<std::string> threshold_texts;
   kdray::CompareOptions compare_options;
   kdray::HeatmapOptions heatmap_options;
-  bool json = false;
 
   app.add_option("TEST", test_path, "The image to judge")->required();
   app.add_option("REFERENCE", reference_path, "The reference image, same size")->required();
@@ -132,7 +123,7 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber)
       ->group("Comparison");
   app.add_option("--threshold", threshold_texts,
-                 "METRIC=VALUE, repeatable: exit 1 when the overall metric is worse (rmse, relmse, mae, psnr, max_abs, "
+                 "METRIC=VALUE, repeatable: exit 3 when the overall metric is worse (rmse, relmse, mae, psnr, max_abs, "
                  "nonfinite)")
       ->type_name("METRIC=VALUE")
       ->expected(1)
@@ -145,7 +136,6 @@ int main(int argc, char** argv) {
                  "Error shown at full colour (default 0: the 99th percentile of the pixel errors)")
       ->check(CLI::NonNegativeNumber)
       ->group("Heat map");
-  app.add_flag("--json", json, "Print JSON on stdout instead of the table")->group("Output");
 
   std::vector<Threshold> thresholds;
   app.callback([&] {
@@ -153,39 +143,25 @@ int main(int argc, char** argv) {
   });
 
   return kdray::tool::run(app, argc, argv, [&]() -> int {
-    kdray::FloatImage test, reference;
-    try {
-      test = kdray::read_float_image(test_path);
-      reference = kdray::read_float_image(reference_path);
-    } catch (const kdray::Error& error) {
-      kdray::tool::print_error("kdcompare", error.what());
-      return kExitFileError;
-    }
+    const kdray::FloatImage test = kdray::read_float_image(test_path);
+    const kdray::FloatImage reference = kdray::read_float_image(reference_path);
     if (!kdray::images_same_size(test, reference)) {
-      kdray::tool::print_error("kdcompare", test_path + ": size " + std::to_string(test.width) + "x" +
-                                                std::to_string(test.height) + " differs from the reference's " +
-                                                std::to_string(reference.width) + "x" +
-                                                std::to_string(reference.height) + " (" + reference_path + ")");
-      return kExitImagesDiffer;
+      throw kdray::Error(test_path, "size " + std::to_string(test.width) + "x" + std::to_string(test.height) +
+                                        " differs from the reference's " + std::to_string(reference.width) + "x" +
+                                        std::to_string(reference.height) + " (" + reference_path + ")");
     }
     CompareResult result;
     try {
       result = kdray::compare_images(test, reference, compare_options);
     } catch (const kdray::Error& error) {
-      kdray::tool::print_error("kdcompare", test_path + ": " + error.what());
-      return kExitImagesDiffer;
+      throw kdray::Error(test_path, std::string(error.what()) + " (choose them with --channels)");
     }
 
     double heatmap_scale = 0;
     if (!heatmap_path.empty()) {
-      try {
-        const std::vector<float> error = kdray::per_pixel_abs_error(test, reference, result.channel_names);
-        kdray::write_float_image_atomic(
-            heatmap_path, kdray::error_heatmap(error, test.width, test.height, heatmap_options, &heatmap_scale));
-      } catch (const kdray::Error& error) {
-        kdray::tool::print_error("kdcompare", error.what());
-        return kExitFileError;
-      }
+      const std::vector<float> error = kdray::per_pixel_abs_error(test, reference, result.channel_names);
+      kdray::write_float_image_atomic(heatmap_path,
+                                      kdray::error_heatmap(error, test.width, test.height, heatmap_options, &heatmap_scale));
     }
 
     bool all_met = true;
@@ -194,7 +170,7 @@ int main(int argc, char** argv) {
       all_met = all_met && threshold.met;
     }
 
-    if (json) {
+    if (output.json) {
       nlohmann::json document = metrics_json(result.overall);
       document["test"] = test_path;
       document["reference"] = reference_path;
@@ -218,10 +194,10 @@ int main(int argc, char** argv) {
       document["thresholds"] = threshold_list;
       document["passed"] = all_met;
       kdray::tool::print_json(document);
-    } else {
+    } else if (!output.quiet) {
       print_summary(test_path, reference_path, test, result, thresholds);
       if (!heatmap_path.empty()) std::printf("heat map: %s (full colour at error %g)\n", heatmap_path.c_str(), heatmap_scale);
     }
-    return all_met ? kExitWithinThresholds : kExitAboveThreshold;
+    return all_met ? kdray::tool::kExitOk : kdray::tool::kExitAboveThreshold;
   });
 }

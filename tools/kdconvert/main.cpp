@@ -70,11 +70,10 @@ void print_summary(const Scene& scene, const std::string& output, const Timings&
 int main(int argc, char** argv) {
   CLI::App app{"Converts a mesh asset into a .kdscene file.\n"
                "OBJ goes through tinyobjloader, every other format through Assimp."};
-  app.name("kdconvert");
-  app.set_version_flag("--version", std::string("kdconvert ") + KDRAY_VERSION);
+  kdray::tool::OutputFlags flags;
+  kdray::tool::add_contract(app, "kdconvert", flags, "Print the summary as JSON on stdout");
   std::string input, output;
   kdray::ImportOptions options;
-  bool json = false, quiet = false;
   app.add_option("INPUT", input, "Asset to convert (OBJ, PLY, glTF, FBX, DAE, 3DS, STL, ...)")->required();
   app.add_option("OUTPUT", output, "The .kdscene file to write (written atomically)")->required();
   std::string importer = "auto", up_axis = "y";
@@ -93,8 +92,6 @@ int main(int argc, char** argv) {
   app.add_option("--camera", options.camera, "Asset camera (name or index) to make the scene's first camera")
       ->group("Import")
       ->default_str("the asset's first, else one framing the bounding box");
-  app.add_flag("--json", json, "Print the summary as JSON on stdout")->group("Output");
-  app.add_flag("--quiet", quiet, "Print nothing on success")->group("Output");
 
   return kdray::tool::run(app, argc, argv, [&] {
     const auto start = std::chrono::steady_clock::now();
@@ -107,9 +104,9 @@ int main(int argc, char** argv) {
     kdray::write_scene(output, scene);  // includes the fsync that makes the file durable
     const Timings timings{std::chrono::duration<double>(imported - start).count(),
                           std::chrono::duration<double>(std::chrono::steady_clock::now() - imported).count()};
-    if (json)
+    if (flags.json)
       kdray::tool::print_json(summary_json(scene, output, timings));
-    else if (!quiet)
+    else if (!flags.quiet)
       print_summary(scene, output, timings);
     return kdray::tool::kExitOk;
   });

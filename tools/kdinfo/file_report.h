@@ -16,6 +16,7 @@ struct FileReport {
   nlohmann::json json;
   std::string text;
   bool intact = false;  // the whole file was read and every check passed
+  std::string problem;  // when not intact and the cause is known: "<file>: <what>", for stderr
 };
 
 // printf into a std::string, for the human-readable reports.
@@ -49,6 +50,7 @@ void add_verified_details(FileReport& report, const char* checks, Load&& load, D
   } catch (const kdray::Error& error) {
     report.json["intact"] = false;
     report.json["problem"] = error.what();
+    report.problem = error.what();
     report.text += std::string("intact     NO: ") + error.what() + "\n";
   }
 }

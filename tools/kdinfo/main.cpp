@@ -47,16 +47,15 @@ bool is_kind(const kdinfo::FileReport& report, const char* kind) { return report
 
 int main(int argc, char** argv) {
   CLI::App app{"Describes kdray files (.kdscene, .kdtree) and checks that they are intact.\n"
-               "Given a scene and a tree, also says whether the tree was built for that scene.\n"
-               "Exit status: 0 intact (and matching), 1 damaged, unreadable or stale, 2 bad arguments."};
-  app.name("kdinfo");
-  app.set_version_flag("--version", std::string("kdinfo ") + KDRAY_VERSION);
+               "Given a scene and a tree, also says whether the tree was built for that scene."};
+  kdray::tool::OutputFlags output;
+  kdray::tool::add_contract(app, "kdinfo", output, "Print the description as JSON on stdout",
+                            "Exit status: 0 intact (and matching); 1 missing, damaged, unreadable or stale (one line "
+                            "on stderr says why); 2 bad command line.");
   std::vector<std::string> paths;
-  bool json = false;
   app.add_option("FILE", paths, "The file to describe, or a .kdscene and a .kdtree to check together")
       ->required()
       ->expected(1, 2);
-  app.add_flag("--json", json, "Print the description as JSON on stdout")->group("Output");
 
   return kdray::tool::run(app, argc, argv, [&] {
     std::vector<kdinfo::FileReport> reports;
@@ -72,9 +71,10 @@ int main(int argc, char** argv) {
     for (const kdinfo::FileReport& report : reports) {
       all_good = all_good && report.intact;
       documents.push_back(report.json);
-      if (!json) std::cout << report.text << (&report != &reports.back() ? "\n" : "");
+      if (!report.problem.empty()) kdray::tool::print_error("kdinfo", report.problem);
+      if (!output.json && !output.quiet) std::cout << report.text << (&report != &reports.back() ? "\n" : "");
     }
-    if (json) {
+    if (output.json) {
       if (reports.size() == 1)
         kdray::tool::print_json(documents[0]);
       else

@@ -5,6 +5,7 @@
 #include <kdray/error.h>
 #include <kdray/kdtree.h>
 
+#include <tree_json.h>
 
 namespace kdinfo {
 namespace {
@@ -12,28 +13,10 @@ namespace {
 using nlohmann::json;
 
 json tree_json(const kdray::KdTree& tree) {
-  const kdray::BuildSettings& settings = tree.settings;
-  const kdray::TreeStats& stats = tree.stats;
+  json j = kdray::tool::tree_stats_json(tree);
   const kdray::Bounds& bounds = tree.bounds;
-  return {
-      {"bounds", {{"min", {bounds.min.x, bounds.min.y, bounds.min.z}}, {"max", {bounds.max.x, bounds.max.y, bounds.max.z}}}},
-      {"build_settings",
-       {{"kt", settings.traversal_cost},
-        {"ki", settings.intersection_cost},
-        {"empty_bonus", settings.empty_bonus},
-        {"max_depth", settings.max_depth},
-        {"perfect_splits", settings.perfect_splits}}},
-      {"triangles", stats.triangles},
-      {"sah_cost", stats.sah_cost},
-      {"nodes", tree.nodes.size()},
-      {"inner_nodes", stats.inner_nodes},
-      {"leaves", stats.leaves},
-      {"empty_leaves", stats.empty_leaves},
-      {"max_leaf_depth", stats.max_depth},
-      {"mean_leaf_depth", stats.mean_leaf_depth},
-      {"mean_triangles_per_leaf", stats.mean_triangles_per_leaf},
-      {"references_per_triangle", stats.references_per_triangle},
-  };
+  j["bounds"] = {{"min", {bounds.min.x, bounds.min.y, bounds.min.z}}, {"max", {bounds.max.x, bounds.max.y, bounds.max.z}}};
+  return j;
 }
 
 std::string tree_text(const json& j) {
@@ -86,10 +69,12 @@ FileReport describe_match(const FileReport& scene, const FileReport& tree) {
   // tree's triangle references fit the scene; a damaged file cannot be vouched for.
   report.intact = same_hash && scene.intact && tree.intact;
   report.json = {{"scene", scene.json.at("file")}, {"tree", tree.json.at("file")}, {"match", report.intact}};
-  if (!same_hash)
+  if (!same_hash) {
+    report.problem = tree.json.at("file").get<std::string>() + ": stale tree: built for scene " + tree_scene_hash +
+                     ", not for " + scene.json.at("file").get<std::string>() + ": rebuild with kdbuild";
     report.text = format("match      NO: stale tree: built for scene %s, but %s has %s: rebuild with kdbuild\n",
                          tree_scene_hash.c_str(), scene.json.at("file").get<std::string>().c_str(), scene_hash.c_str());
-  else if (!report.intact)
+  } else if (!report.intact)
     report.text = "match      unknown: a file is damaged\n";
   else
     report.text = "match      yes: the tree was built for this scene\n";

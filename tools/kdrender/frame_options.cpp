@@ -2,6 +2,8 @@
 
 #include <kdray/image_io.h>
 
+#include <device_option.h>
+
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -109,10 +111,7 @@ void add_frame_options(CLI::App& app, FrameOptions& o) {
   app.add_flag("--no-mis", o.no_mis, "Test switch: light samples at full weight, no multiple importance sampling")
       ->group("Lights");
 
-  app.add_option("--device", o.device.device, "auto (a GPU if present, else the CPU), cpu, gpu, an index, list; all or a comma-separated list "
-                 "of indices splits the render's samples across those devices by their speed (same image)")
-      ->capture_default_str()
-      ->group("Device");
+  kdray::tool::add_device_option(app, o.device.device, false);
   app.add_option("--local-size", o.device.local_size, "OpenCL work-group size (0: device default, 64 on CPUs)")
       ->capture_default_str()
       ->group("Device");
@@ -159,6 +158,9 @@ std::shared_ptr<const kdray::Environment> EnvironmentCache::get(const FrameOptio
 }
 
 Frame resolve_frame(const FrameOptions& o, EnvironmentCache& environments) {
+  if (kdray::tool::device_kind(o.device.device) == kdray::tool::DeviceKind::List) {
+    throw UsageError("--device list prints the devices; it renders nothing");
+  }
   if (o.output.empty()) throw UsageError("-o OUTPUT is required");
   if (!kdray::is_supported_image_path(o.output)) throw UsageError("-o " + o.output + ": use .exr, .png or .jpg");
   Frame frame{o.output, o.settings, o.device, 0};

@@ -8,18 +8,16 @@
 #include <kdray/render.h>
 
 #include <CLI/CLI.hpp>
+#include <tool_main.h>
 
 #include <map>
 #include <memory>
-#include <stdexcept>
 #include <string>
 
 namespace kdrender {
 
 // A command line (or jobs line) that parses but asks for something inconsistent: exit 2.
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+using kdray::tool::UsageError;
 
 // The options as written; resolve_frame() turns them into render settings.
 struct FrameOptions {

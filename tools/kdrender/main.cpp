@@ -9,7 +9,6 @@
 //   kdrender --device list
 #include "batch.h"
 #include "frame_options.h"
-#include "progress.h"
 #include "render_frame.h"
 
 #include <kdray/image_io.h>
@@ -17,6 +16,8 @@
 #include <kdray/render.h>
 #include <kdray/scene_file.h>
 
+#include <device_option.h>
+#include <progress.h>
 #include <tool_main.h>
 
 #include <chrono>
@@ -27,8 +28,7 @@
 namespace {
 
 using kdray::tool::kExitOk;
-using kdray::tool::kExitUsage;
-using kdrender::UsageError;
+using kdray::tool::UsageError;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
@@ -37,7 +37,8 @@ struct Options {
   std::string scene_path, tree_path;
   std::vector<std::string> merge_inputs;
   std::string jobs_path;
-  bool resume = false, json = false, quiet = false;
+  bool resume = false;
+  kdray::tool::OutputFlags flags;
   kdrender::FrameOptions frame;  // a single render's frame, or the defaults of every jobs line
 };
 
@@ -45,8 +46,6 @@ void add_options(CLI::App& app, Options& o) {
   app.add_option("SCENE", o.scene_path, "The .kdscene to render");
   app.add_option("TREE", o.tree_path, "Its .kdtree (from kdbuild; must match the scene)");
   kdrender::add_frame_options(app, o.frame);
-  app.add_flag("--json", o.json, "Print statistics as JSON on stdout instead of the summary")->group("Output");
-  app.add_flag("-q,--quiet", o.quiet, "No progress and no summary")->group("Output");
   app.add_option("--merge", o.merge_inputs,
                  "Merge EXRs of sample ranges of one render (any order) into --output, exactly (film.h); "
                  "refuses other renders, overlaps and gaps; with --spp (and --sample-offset) the ranges must "
@@ -61,23 +60,6 @@ void add_options(CLI::App& app, Options& o) {
       ->group("Batch");
 }
 
-int list_devices(bool json) {
-  std::vector<kdray::DeviceInfo> devices = kdray::list_devices();
-  kdray::DeviceInfo chosen = kdray::select_device({});
-  nlohmann::json list = nlohmann::json::array();
-  for (const auto& d : devices) {
-    list.push_back({{"index", d.index}, {"platform", d.platform}, {"name", d.name}, {"driver", d.driver_version},
-                    {"gpu", d.is_gpu}, {"compute_units", d.compute_units}, {"default", d.index == chosen.index}});
-    if (!json) {
-      std::printf("%d: %s / %s (%s, %u compute units, driver %s)%s\n", d.index, d.platform.c_str(), d.name.c_str(),
-                  d.is_gpu ? "GPU" : "CPU", d.compute_units, d.driver_version.c_str(),
-                  d.index == chosen.index ? "  [default]" : "");
-    }
-  }
-  if (json) kdray::tool::print_json({{"devices", list}});
-  return kExitOk;
-}
-
 // Merges the sample ranges given in any order; with --spp (and --sample-offset) they must cover
 // exactly that range.
 int merge(const Options& o, bool range_given) {
@@ -90,10 +72,10 @@ int merge(const Options& o, bool range_given) {
   if (range_given) expected = std::make_pair(o.frame.settings.sample_offset, o.frame.settings.spp);
   kdray::Film merged = kdray::merge_film_ranges(std::move(inputs), expected);
   kdray::write_film_image(output, merged);
-  if (o.json) {
+  if (o.flags.json) {
     kdray::tool::print_json({{"output", output}, {"inputs", o.merge_inputs}, {"sample_offset", merged.sample_offset},
                              {"spp", merged.sample_count}, {"mean_radiance", merged.mean_radiance()}});
-  } else if (!o.quiet) {
+  } else if (!o.flags.quiet) {
     std::printf("merged %zu images: samples %u..%u -> %s\n", o.merge_inputs.size(), merged.sample_offset,
                 merged.sample_offset + merged.sample_count - 1, output.c_str());
   }
@@ -110,20 +92,21 @@ int render(const Options& o) {
   kdray::check_tree_matches_scene(tree, o.tree_path, scene, o.scene_path);
   double load_seconds = seconds_since(load_start);
   if (!o.jobs_path.empty()) {
-    return kdrender::run_batch(scene, tree, o.frame, {o.scene_path, o.jobs_path, o.resume, o.json, o.quiet},
+    return kdrender::run_batch(scene, tree, o.frame, {o.scene_path, o.jobs_path, o.resume, o.flags.json, o.flags.quiet},
                                load_seconds);
   }
 
   kdrender::warn_if_default_light(scene, o.scene_path, frame);
-  kdrender::ProgressReport progress(!o.quiet && !o.json);
-  kdrender::FrameResult result = kdrender::render_frame(
-      scene, tree, frame, [&](uint32_t done, uint32_t total) { progress.update(done, total); });
+  kdray::tool::ProgressBar progress("kdrender", !o.flags.quiet);
+  kdrender::FrameResult result = kdrender::render_frame(scene, tree, frame, [&](uint32_t done, uint32_t total) {
+    progress.update(double(done) / total, std::to_string(done) + "/" + std::to_string(total) + " spp");
+  });
   progress.finish();
-  if (o.json) {
+  if (o.flags.json) {
     nlohmann::json report = kdrender::frame_json(frame, result);
     report["load_seconds"] = load_seconds;
     kdray::tool::print_json(report);
-  } else if (!o.quiet) {
+  } else if (!o.flags.quiet) {
     kdrender::print_frame_summary(frame, result);
     std::printf("load %.3f s\n", load_seconds);
   }
@@ -133,26 +116,22 @@ int render(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Renders a .kdscene with its .kdtree on an OpenCL device (path tracing), a batch of\n"
-               "frames (--jobs), or merges EXRs of sample ranges. Exit status: 0 ok, 1 failure, 2 bad arguments."};
-  app.name("kdrender");
-  app.set_version_flag("--version", std::string("kdrender ") + KDRAY_VERSION);
+  CLI::App app{"Renders a .kdscene with its .kdtree on OpenCL devices (path tracing), a batch of\n"
+               "frames (--jobs), or merges EXRs of sample ranges."};
   Options o;
+  kdray::tool::add_contract(app, "kdrender", o.flags, "Print statistics as JSON on stdout instead of the summary");
   add_options(app, o);
 
   return kdray::tool::run(app, argc, argv, [&]() -> int {
-    try {
-      if (o.frame.device.device == "list") return list_devices(o.json);
-      if (!o.merge_inputs.empty()) {
-        if (!o.scene_path.empty() || !o.jobs_path.empty()) throw UsageError("--merge takes EXR files, not a scene and tree");
-        return merge(o, app.count("--spp") + app.count("--sample-offset") > 0);
-      }
-      if (o.resume && o.jobs_path.empty()) throw UsageError("--resume needs --jobs");
-      if (o.scene_path.empty() || o.tree_path.empty()) throw UsageError("SCENE and TREE are required");
-      return render(o);
-    } catch (const UsageError& error) {
-      kdray::tool::print_error("kdrender", std::string(error.what()) + " (see --help)");
-      return kExitUsage;
+    if (kdray::tool::device_kind(o.frame.device.device) == kdray::tool::DeviceKind::List) {
+      return kdray::tool::list_opencl_devices(o.flags.json);
     }
+    if (!o.merge_inputs.empty()) {
+      if (!o.scene_path.empty() || !o.jobs_path.empty()) throw UsageError("--merge takes EXR files, not a scene and tree");
+      return merge(o, app.count("--spp") + app.count("--sample-offset") > 0);
+    }
+    if (o.resume && o.jobs_path.empty()) throw UsageError("--resume needs --jobs");
+    if (o.scene_path.empty() || o.tree_path.empty()) throw UsageError("SCENE and TREE are required");
+    return render(o);
   });
 }

@@ -2,6 +2,8 @@
 
 #include <kdray/image_io.h>
 
+#include <tool_main.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -97,11 +99,10 @@ void warn_if_default_light(const kdray::Scene& scene, const std::string& scene_p
   static bool warned = false;
   if (warned || frame.settings.environment || !kdray::render_environment(scene, frame.settings)) return;
   warned = true;
-  std::fprintf(stderr,
-               "kdrender: warning: %s: the scene has no light (no emissive triangles, no punctual lights) and no "
-               "--env: lighting it with the default light, a uniform white environment of radiance 1 "
-               "(--no-default-light renders black)\n",
-               scene_path.c_str());
+  kdray::tool::print_warning("kdrender", scene_path +
+                                             ": the scene has no light (no emissive triangles, no punctual lights) "
+                                             "and no --env: lighting it with the default light, a uniform white "
+                                             "environment of radiance 1 (--no-default-light renders black)");
 }
 
 bool frame_already_written(const Frame& frame, const kdray::Scene& scene, uint64_t tree_hash) {

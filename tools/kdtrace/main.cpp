@@ -7,20 +7,16 @@
 #include <kdray/trace_opencl.h>
 #include <kdray/traverse.h>
 
+#include "device_option.h"
+#include "process_stats.h"
 #include "tool_main.h"
 
 #include <chrono>
-#include <sys/resource.h>
 #include <cstdio>
-#include <map>
 #include <optional>
 #include <string>
 
 namespace {
-
-// Where the rays are traced: the CPU reference traversal (libkdtree) or librender's kd_trace
-// kernel on an OpenCL device; both run the same kernels/kd_traverse.h.
-enum class Device { Cpu, OpenCl };
 
 struct TraceRun {
   std::vector<HitRecord> hits;
@@ -38,52 +34,45 @@ unsigned kernel_stack_size(kdray::TraversalStack stack) {
   return 0;  // the kernel's default KD_SHORT_STACK_SIZE, as on the CPU
 }
 
-double cpu_seconds() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
-TraceRun trace_on(Device device, const kdray::Scene& scene, const kdray::KdTree& tree,
+// Where the rays are traced: on the host, libkdtree's CPU traversal; on an OpenCL device,
+// librender's kd_trace kernel. Both run the same kernels/kd_traverse.h.
+TraceRun trace_on(bool host, const kdray::Scene& scene, const kdray::KdTree& tree,
                   const std::vector<RayRecord>& rays, const kdray::TraceOptions& options,
                   kdray::DeviceSelection opencl_device) {
   TraceRun run;
   // Gathering the triangle vertices is set-up, like the OpenCL upload: not part of the rate.
   const std::optional<kdray::PreparedTraversal> cpu_traversal =
-      device == Device::Cpu ? std::optional<kdray::PreparedTraversal>(std::in_place, scene, tree) : std::nullopt;
-  const double cpu_start = cpu_seconds();
+      host ? std::optional<kdray::PreparedTraversal>(std::in_place, scene, tree) : std::nullopt;
+  const double cpu_start = kdray::tool::cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
-  switch (device) {
-    case Device::Cpu: cpu_traversal->closest(rays, run.hits, options); break;
-    case Device::OpenCl:
-      opencl_device.short_stack_size = kernel_stack_size(options.stack);
-      run.hits = kdray::trace_rays_opencl(scene, tree, rays, opencl_device, &run.opencl);
-      break;
+  if (host) {
+    cpu_traversal->closest(rays, run.hits, options);
+  } else {
+    opencl_device.short_stack_size = kernel_stack_size(options.stack);
+    run.hits = kdray::trace_rays_opencl(scene, tree, rays, opencl_device, &run.opencl);
   }
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (device == Device::OpenCl) run.seconds = run.opencl.trace_seconds;
-  run.cpu_seconds = cpu_seconds() - cpu_start;
+  run.seconds = host ? std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+                     : run.opencl.trace_seconds;
+  run.cpu_seconds = kdray::tool::cpu_seconds() - cpu_start;
   return run;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"kdtrace: closest hit of every ray against a scene and its k-d tree", "kdtrace"};
-  app.set_version_flag("--version", std::string("kdtrace ") + KDRAY_VERSION);
+  CLI::App app{"kdtrace: closest hit of every ray against a scene and its k-d tree"};
+  kdray::tool::OutputFlags output;
+  kdray::tool::add_contract(app, "kdtrace", output, "Print the summary as JSON on stdout");
   std::string scene_path, tree_path, rays_path, hits_path, generate, write_rays_path, stack_name = "short";
-  Device device = Device::Cpu;
   size_t count = 1000000;
   uint32_t width = 1024, height = 768;
   uint64_t seed = 1;
   kdray::TraceOptions options;
   kdray::DeviceSelection opencl_device;
-  bool json = false;
-  app.add_option("SCENE", scene_path, "Scene (.kdscene)")->required()->check(CLI::ExistingFile);
-  app.add_option("TREE", tree_path, "Its k-d tree (.kdtree, from kdbuild)")->required()->check(CLI::ExistingFile);
-  auto* rays_option = app.add_option("--rays", rays_path, "Ray file to trace (formats/rays.md)")->group("Rays")
-                          ->check(CLI::ExistingFile);
+  opencl_device.device = "host";
+  app.add_option("SCENE", scene_path, "Scene (.kdscene)");
+  app.add_option("TREE", tree_path, "Its k-d tree (.kdtree, from kdbuild)");
+  auto* rays_option = app.add_option("--rays", rays_path, "Ray file to trace (formats/rays.md)")->group("Rays");
   auto* generate_option =
       app.add_option("--generate", generate,
                      "Trace a generated ray set instead: camera (the scene's first camera, --width x --height), "
@@ -91,31 +80,27 @@ int main(int argc, char** argv) {
                      "cases, --count)")
           ->check(CLI::IsMember({"camera", "random", "hard"}))->group("Rays");
   rays_option->excludes(generate_option);
-  app.add_option("--count", count, "Rays of a random or hard set")->capture_default_str()->group("Rays");
-  app.add_option("--width", width, "Camera rays per row")->capture_default_str()->group("Rays");
-  app.add_option("--height", height, "Camera rows")->capture_default_str()->group("Rays");
+  app.add_option("--count", count, "Rays of a random or hard set")
+      ->check(CLI::Range(size_t{1}, size_t{1} << 32))->capture_default_str()->group("Rays");
+  app.add_option("--width", width, "Camera rays per row")->check(CLI::Range(1u, 65536u))->capture_default_str()->group("Rays");
+  app.add_option("--height", height, "Camera rows")->check(CLI::Range(1u, 65536u))->capture_default_str()->group("Rays");
   app.add_option("--seed", seed, "Seed of a random or hard set")->capture_default_str()->group("Rays");
   app.add_option("--write-rays", write_rays_path, "Also write the generated rays to this ray file")->group("Rays");
   app.add_option("--hits", hits_path, "Hit file to write (formats/rays.md)")->group("Output");
-  app.add_flag("--json", json, "Print the summary as JSON on stdout")->group("Output");
-  app.add_option("--device", device, "Where to trace")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, Device>{{"cpu", Device::Cpu}, {"opencl", Device::OpenCl}}))
-      ->default_str("cpu")->group("Run");
-  app.add_option("--opencl-device", opencl_device.device,
-                 "With --device opencl: auto (a GPU if present, else the CPU), cpu, gpu or an index of "
-                 "`kdrender --device list`")
-      ->capture_default_str()->group("Run");
-  app.add_option("--local-size", opencl_device.local_size, "With --device opencl: work-group size; 0: the device's default")
-      ->capture_default_str()->group("Run");
-  app.add_option("--threads", options.threads, "CPU threads of --device cpu; 0: all cores")->capture_default_str()->group("Run");
+  kdray::tool::add_device_option(app, opencl_device.device, true);
+  app.add_option("--local-size", opencl_device.local_size, "OpenCL work-group size; 0: the device's default")
+      ->capture_default_str()->group("Device");
+  app.add_option("--threads", options.threads, "Threads of --device host; 0: all cores")->capture_default_str()->group("Device");
   app.add_option("--stack", stack_name, "Traversal stack: short (8 entries, restart), depth1, full")
-      ->check(CLI::IsMember({"short", "depth1", "full"}))->capture_default_str()->group("Run");
+      ->check(CLI::IsMember({"short", "depth1", "full"}))->capture_default_str()->group("Device");
 
-  return kdray::tool::run(app, argc, argv, [&] {
-    if (rays_path.empty() == generate.empty()) {
-      kdray::tool::print_error("kdtrace", "give one of --rays or --generate (see --help)");
-      return kdray::tool::kExitUsage;
-    }
+  return kdray::tool::run(app, argc, argv, [&]() -> int {
+    const kdray::tool::DeviceKind device = kdray::tool::device_kind(opencl_device.device);
+    if (device == kdray::tool::DeviceKind::List) return kdray::tool::list_opencl_devices(output.json);
+    if (device == kdray::tool::DeviceKind::All) throw kdray::tool::UsageError("--device all: kdtrace traces on one device");
+    if (scene_path.empty() || tree_path.empty()) throw kdray::tool::UsageError("SCENE and TREE are required");
+    if (rays_path.empty() == generate.empty()) throw kdray::tool::UsageError("give one of --rays or --generate");
+    const bool host = device == kdray::tool::DeviceKind::Host;
     const kdray::Scene scene = kdray::read_scene(scene_path);
     const kdray::KdTree tree = kdray::read_tree(tree_path);
     kdray::check_tree_matches_scene(tree, tree_path, scene, scene_path);
@@ -130,13 +115,13 @@ int main(int argc, char** argv) {
     options.stack = stack_name == "depth1" ? kdray::TraversalStack::Depth1
                     : stack_name == "full" ? kdray::TraversalStack::Full
                                            : kdray::TraversalStack::Short;
-    const TraceRun run = trace_on(device, scene, tree, rays, options, opencl_device);
+    const TraceRun run = trace_on(host, scene, tree, rays, options, opencl_device);
     if (!hits_path.empty()) kdray::write_hits(hits_path, run.hits);
 
     size_t hit_count = 0;
     for (const HitRecord& hit : run.hits) hit_count += hit.triangle != KD_NO_HIT ? 1 : 0;
     const double mrays_per_s = run.seconds > 0 ? static_cast<double>(rays.size()) / run.seconds / 1e6 : 0.0;
-    if (json) {
+    if (output.json) {
       nlohmann::json summary = {{"scene", scene_path}, {"tree", tree_path}, {"rays", rays.size()}, {"hits", hit_count},
                                 {"seconds", run.seconds}, {"cpu_seconds", run.cpu_seconds}, {"mrays_per_s", mrays_per_s},
                                 {"stack", stack_name}};
@@ -149,13 +134,12 @@ int main(int argc, char** argv) {
       summary["per_ray"] = {{"inner_steps", static_cast<double>(work.inner_steps) * per_ray},
                             {"leaves", static_cast<double>(work.leaves) * per_ray},
                             {"triangle_tests", static_cast<double>(work.triangle_tests) * per_ray}};
-      if (device == Device::Cpu) {
-        summary["device"] = "cpu";
+      if (host) {
+        summary["device"] = "host";
         summary["threads"] = options.threads;
         summary["variant"] = "cpu-one-ray-per-thread+prefetch";
       } else {
-        summary["device"] = "opencl";
-        summary["opencl_device"] = run.opencl.device;
+        summary["device"] = run.opencl.device;
         summary["build_seconds"] = run.opencl.build_seconds;
         summary["build_source"] = run.opencl.build_source;
         summary["upload_seconds"] = run.opencl.upload_seconds;
@@ -164,7 +148,8 @@ int main(int argc, char** argv) {
       kdray::tool::print_json(summary);
       return kdray::tool::kExitOk;
     }
-    if (device == Device::OpenCl)
+    if (output.quiet) return kdray::tool::kExitOk;
+    if (!host)
       std::printf("OpenCL device %s (%s): program %s in %.3f s, upload %.3f s\n", run.opencl.device.c_str(),
                   run.opencl.kernel_variant.c_str(), run.opencl.build_source.c_str(), run.opencl.build_seconds,
                   run.opencl.upload_seconds);

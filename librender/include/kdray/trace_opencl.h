@@ -1,4 +1,4 @@
-// Closest hits for a batch of rays with the OpenCL traversal kernel (kdtrace --device opencl).
+// Closest hits for a batch of rays with the OpenCL traversal kernel (kdtrace with an OpenCL --device).
 #pragma once
 
 #include <kdray/kdtree.h>

@@ -1,0 +1,67 @@
+// --device: one vocabulary in every tool that runs on a device.
+//   host       kdray's own C++ code on the CPU (libkdtree's traversal), threads from --threads
+//   auto       an OpenCL GPU if there is one, else the OpenCL CPU device
+//   cpu, gpu   the first OpenCL device of that type (cpu is PoCL)
+//   INDEX      an OpenCL device by its number in `--device list`
+//   all        every OpenCL device at once
+//   I,J,...    those OpenCL devices at once (kdrender)
+//   list       print the OpenCL devices and exit
+// Tools that link librender include this header (list_opencl_devices needs it).
+#pragma once
+
+#include <kdray/opencl_device.h>
+
+#include "tool_main.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <string>
+
+namespace kdray::tool {
+
+enum class DeviceKind { Host, OpenCl, All, List };
+
+inline DeviceKind device_kind(const std::string& choice) {
+  if (choice == "host") return DeviceKind::Host;
+  if (choice == "all" || choice.find(',') != std::string::npos) return DeviceKind::All;
+  if (choice == "list") return DeviceKind::List;
+  return DeviceKind::OpenCl;
+}
+
+// Adds --device to `app`; `with_host` says whether the tool has a host (C++) implementation.
+inline CLI::Option* add_device_option(CLI::App& app, std::string& choice, bool with_host) {
+  const std::string help = std::string(with_host ? "host (kdray's C++ code on the CPU, with --threads), or an " : "An ") +
+                           "OpenCL device: auto (a GPU if present, else the CPU), cpu (PoCL), gpu, an index of "
+                           "--device list, or all (or I,J,...: several at once); list prints the OpenCL devices";
+  CLI::Validator names(
+      [with_host](std::string& text) -> std::string {
+        if (text == "auto" || text == "cpu" || text == "gpu" || text == "all" || text == "list") return {};
+        if (text == "host" && with_host) return {};
+        if (!text.empty() && text.size() < 64 && text.find_first_not_of("0123456789,") == std::string::npos) return {};
+        return "'" + text + "' is not " + (with_host ? "host, " : "") +
+               "auto, cpu, gpu, all, list, a device index or a comma-separated list of them";
+      },
+      "DEVICE");
+  return app.add_option("--device", choice, help)->check(names)->capture_default_str()->group("Device");
+}
+
+// `--device list`: every OpenCL device, the one `auto` picks marked.
+inline int list_opencl_devices(bool json) {
+  const std::vector<DeviceInfo> devices = list_devices();
+  const DeviceInfo chosen = select_device({});
+  nlohmann::json list = nlohmann::json::array();
+  for (const DeviceInfo& d : devices) {
+    list.push_back({{"index", d.index}, {"platform", d.platform}, {"name", d.name}, {"driver", d.driver_version},
+                    {"gpu", d.is_gpu}, {"compute_units", d.compute_units}, {"default", d.index == chosen.index}});
+    if (!json) {
+      std::printf("%d: %s / %s (%s, %u compute units, driver %s)%s\n", d.index, d.platform.c_str(), d.name.c_str(),
+                  d.is_gpu ? "GPU" : "CPU", d.compute_units, d.driver_version.c_str(),
+                  d.index == chosen.index ? "  [default]" : "");
+    }
+  }
+  if (json) print_json({{"devices", list}});
+  return kExitOk;
+}
+
+}  // namespace kdray::tool

@@ -1,0 +1,35 @@
+// A tree's build settings and statistics in the JSON vocabulary every tool uses (README.md),
+// the same in kdbuild's report and kdinfo's description. Tools that link libkdtree include it.
+#pragma once
+
+#include <kdray/kdtree.h>
+
+#include <nlohmann/json.hpp>
+
+namespace kdray::tool {
+
+inline nlohmann::json tree_stats_json(const KdTree& tree) {
+  const BuildSettings& settings = tree.settings;
+  const TreeStats& stats = tree.stats;
+  return {
+      {"build_settings",
+       {{"kt", settings.traversal_cost},
+        {"ki", settings.intersection_cost},
+        {"empty_bonus", settings.empty_bonus},
+        {"max_depth", settings.max_depth},  // as given; 0: automatic
+        {"depth_limit", settings.resolved_max_depth(stats.triangles)},
+        {"perfect_splits", settings.perfect_splits}}},
+      {"triangles", stats.triangles},
+      {"sah_cost", stats.sah_cost},
+      {"nodes", tree.nodes.size()},
+      {"inner_nodes", stats.inner_nodes},
+      {"leaves", stats.leaves},
+      {"empty_leaves", stats.empty_leaves},
+      {"max_leaf_depth", stats.max_depth},
+      {"mean_leaf_depth", stats.mean_leaf_depth},
+      {"mean_triangles_per_leaf", stats.mean_triangles_per_leaf},
+      {"references_per_triangle", stats.references_per_triangle},
+  };
+}
+
+}  // namespace kdray::tool

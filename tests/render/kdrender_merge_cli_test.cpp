@@ -80,7 +80,7 @@ TEST_F(KdrenderMerge, RefusesGapsOverlapsAndMissingEnds) {
   expect_refusal({"s1.exr", "s1.exr"}, "s1.exr", "overlap");
   expect_refusal({"s0.exr", "s1.exr", "s2.exr"}, "s2.exr", "samples 6..7 are missing", "--spp 8");
   expect_refusal({"s1.exr", "s2.exr", "s3.exr"}, "s1.exr", "samples 0..1 are missing", "--spp 8");
-  expect_refusal({"s1.exr", "s2.exr"}, "s1.exr", "more than samples 2..3", "--spp 2 --sample-offset 2");
+  expect_refusal({"s1.exr", "s2.exr"}, "s2.exr", "more than samples 2..3", "--spp 2 --sample-offset 2");
 }
 
 TEST_F(KdrenderMerge, RefusesShardsOfAnotherRender) {

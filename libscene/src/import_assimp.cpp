@@ -199,7 +199,14 @@ class AssimpConverter {
       const aiMatrix3x3 rotation(transform);
       Camera converted;
       converted.name = camera.mName.C_Str();
-      const aiVector3D position = transform * camera.mPosition;
+      // Assimp 5.2's glTF importer also copies the node's translation into mPosition, which the
+      // node transform then applies a second time: such a position is the node's own.
+      const aiNode* node = source_.mRootNode->FindNode(camera.mName);
+      const aiVector3D local_translation = node ? aiVector3D(node->mTransformation.a4, node->mTransformation.b4,
+                                                             node->mTransformation.c4)
+                                                : aiVector3D();
+      const bool position_is_node_translation = camera.mPosition != aiVector3D() && camera.mPosition == local_translation;
+      const aiVector3D position = transform * (position_is_node_translation ? aiVector3D() : camera.mPosition);
       converted.position = to_vec3(position);
       converted.target = to_vec3(position + rotation * camera.mLookAt);
       converted.up = normalized(rotation * camera.mUp);

@@ -1,5 +1,6 @@
 /* Materials: Lambertian diffuse (also the reflection of emitters), perfect mirror, GGX rough
- * conductor (Walter et al. 2007) and smooth dielectric. OpenCL C only.
+ * conductor (Walter et al. 2007), smooth dielectric and glTF metallic-roughness (a GGX conductor
+ * blended with a diffuse base under a dielectric GGX coat, as Mitsuba's roughplastic). OpenCL C only.
  * Conventions: n is the shading normal turned to the side of wo; wo and wi point away from the
  * surface; "weight" is f * |cos| / pdf. Features a scene lacks are compiled out. */
 #ifndef PT_BSDF_H
@@ -16,7 +17,11 @@ typedef struct PtBsdfSample {
   int transmits;   /* wi leaves through the other side */
 } PtBsdfSample;
 
-#ifdef KD_FEATURE_GLOSSY
+#if defined(KD_FEATURE_GLOSSY) || defined(KD_FEATURE_METALLIC_ROUGHNESS)
+#define PT_GGX_CODE
+#endif
+
+#ifdef PT_GGX_CODE
 inline float pt_ggx_d(float cos_h, float alpha2) {
   float c2 = cos_h * cos_h;
   float denom = c2 * (alpha2 - 1.0f) + 1.0f;
@@ -36,22 +41,41 @@ inline float pt_ggx_alpha2(float roughness) {
   float alpha = fmax(roughness, 1e-3f);
   return alpha * alpha;
 }
-/* f * cos(wi) and the pdf of sampling wi by pt_ggx_sample. */
-inline float3 pt_ggx_eval(float3 color, float roughness, float3 n, float3 wo, float3 wi, float* pdf) {
+/* D * G / (4 cos(wo)) (f * cos(wi) without the Fresnel factor), the pdf of sampling wi by
+ * pt_ggx_sample_wi, and wo . h. */
+inline float pt_ggx_eval_common(float roughness, float3 n, float3 wo, float3 wi, float* pdf, float* o_h) {
   *pdf = 0.0f;
+  *o_h = 1.0f;
   float cos_o = dot(n, wo), cos_i = dot(n, wi);
-  if (cos_o <= 0.0f || cos_i <= 0.0f) return (float3)(0.0f);
+  if (cos_o <= 0.0f || cos_i <= 0.0f) return 0.0f;
   float3 h = normalize(wo + wi);
   float alpha2 = pt_ggx_alpha2(roughness);
-  float cos_h = dot(n, h), o_h = dot(wo, h);
+  float cos_h = dot(n, h);
+  *o_h = dot(wo, h);
   float d = pt_ggx_d(cos_h, alpha2);
-  *pdf = d * cos_h / (4.0f * o_h);
+  *pdf = d * cos_h / (4.0f * *o_h);
   float g = pt_ggx_g1(cos_o, alpha2) * pt_ggx_g1(cos_i, alpha2);
-  return pt_schlick(color, o_h) * (d * g / (4.0f * cos_o));
+  return d * g / (4.0f * cos_o);
+}
+/* f * cos(wi) and the pdf of sampling wi by pt_ggx_sample_wi. */
+inline float3 pt_ggx_eval(float3 color, float roughness, float3 n, float3 wo, float3 wi, float* pdf) {
+  float o_h;
+  float common = pt_ggx_eval_common(roughness, n, wo, wi, pdf, &o_h);
+  return common > 0.0f ? pt_schlick(color, o_h) * common : (float3)(0.0f);
+}
+/* wo reflected about a half vector drawn from D(h) cos(h). */
+inline float3 pt_ggx_sample_wi(float roughness, float3 n, float3 wo, float u1, float u2) {
+  float alpha2 = pt_ggx_alpha2(roughness);
+  float tan2 = alpha2 * u1 / fmax(1.0f - u1, 1e-7f);
+  float cos_h = 1.0f / sqrt(1.0f + tan2);
+  float sin_h = sqrt(fmax(0.0f, 1.0f - cos_h * cos_h));
+  float phi = 2.0f * PT_PI * u2;
+  float3 h = pt_to_world((float3)(sin_h * cos(phi), sin_h * sin(phi), cos_h), n);
+  return 2.0f * dot(wo, h) * h - wo;
 }
 #endif
 
-#ifdef KD_FEATURE_GLASS
+#if defined(KD_FEATURE_GLASS) || defined(KD_FEATURE_METALLIC_ROUGHNESS)
 /* Unpolarised Fresnel reflectance for cos_i on the side of index eta_i into eta_t. */
 inline float pt_fresnel_dielectric(float cos_i, float cos_t, float eta_i, float eta_t) {
   float rs = (eta_i * cos_i - eta_t * cos_t) / (eta_i * cos_i + eta_t * cos_t);
@@ -60,10 +84,55 @@ inline float pt_fresnel_dielectric(float cos_i, float cos_t, float eta_i, float 
 }
 #endif
 
+#ifdef KD_FEATURE_METALLIC_ROUGHNESS
+/* Reflectance of a smooth interface seen from outside, into index eta. */
+inline float pt_fresnel_coat(float cos_i, float eta) {
+  float sin2_t = fmax(0.0f, 1.0f - cos_i * cos_i) / (eta * eta);
+  if (sin2_t >= 1.0f) return 1.0f;
+  return pt_fresnel_dielectric(cos_i, sqrt(1.0f - sin2_t), 1.0f, eta);
+}
+/* Diffuse reflectance of the coat's inside (light from the base leaving into air): the fit of
+ * Egan and Hilgeman (1973) in the relative index 1/eta, as Mitsuba uses for eta < 1. */
+inline float pt_fresnel_diffuse_inside(float eta) {
+  float x = 1.0f / eta;
+  return -1.4399f * x * x + 0.7099f * x + 0.6681f + 0.0636f / x;
+}
+/* Probability of sampling the GGX lobes (metal and coat share the distribution): the metal's
+ * weight plus the coat's share of what the plastic reflects at wo. */
+inline float pt_metal_rough_ggx_probability(const PtMaterial* m, float3 color, float cos_o) {
+  float coat = pt_fresnel_coat(cos_o, m->ior);
+  float diffuse = (1.0f - coat) * pt_luminance(color);
+  float p_coat = coat + diffuse > 0.0f ? coat / (coat + diffuse) : 1.0f;
+  return m->metallic + (1.0f - m->metallic) * p_coat;
+}
+/* f * cos(wi) and pdf of glTF metallic-roughness. The plastic part is Mitsuba's roughplastic
+ * (linear mode) with the smooth interface's transmittance 1 - F for both directions: the base's
+ * light leaves through the coat as (1 - F(wi)) (1 - F(wo)) / (eta^2 (1 - F_dr,inside)), so a white
+ * base under a smooth coat reflects exactly 1 in total. */
+inline float3 pt_metal_rough_eval(const PtMaterial* m, float3 color, float3 n, float3 wo, float3 wi, float* pdf) {
+  float ggx_pdf, o_h;
+  float common = pt_ggx_eval_common(m->roughness, n, wo, wi, &ggx_pdf, &o_h);
+  float cos_o = dot(n, wo), cos_i = dot(n, wi);
+  *pdf = 0.0f;
+  if (cos_o <= 0.0f || cos_i <= 0.0f) return (float3)(0.0f);
+  float eta = m->ior;
+  float3 metal = pt_schlick(color, o_h) * common;
+  float coat = pt_fresnel_coat(o_h, eta) * common;
+  float transmit = (1.0f - pt_fresnel_coat(cos_i, eta)) * (1.0f - pt_fresnel_coat(cos_o, eta));
+  float3 base = color * (cos_i * PT_INV_PI * transmit / (eta * eta * (1.0f - pt_fresnel_diffuse_inside(eta))));
+  float p_ggx = pt_metal_rough_ggx_probability(m, color, cos_o);
+  *pdf = p_ggx * ggx_pdf + (1.0f - p_ggx) * cos_i * PT_INV_PI;
+  return m->metallic * metal + (1.0f - m->metallic) * (coat + base);
+}
+#endif
+
 inline int pt_is_delta(uint type) { return type == PT_MIRROR || type == PT_DIELECTRIC; }
 
 /* f * |cos(wi)| for the non-delta lobes, and the pdf pt_bsdf_sample would give wi. */
 inline float3 pt_bsdf_eval(const PtMaterial* m, float3 color, float3 n, float3 wo, float3 wi, float* pdf) {
+#ifdef KD_FEATURE_METALLIC_ROUGHNESS
+  if (m->type == PT_METALLIC_ROUGHNESS) return pt_metal_rough_eval(m, color, n, wo, wi, pdf);
+#endif
 #ifdef KD_FEATURE_GLOSSY
   if (m->type == PT_ROUGH_CONDUCTOR) return pt_ggx_eval(color, m->roughness, n, wo, wi, pdf);
 #endif
@@ -76,9 +145,10 @@ inline float3 pt_bsdf_eval(const PtMaterial* m, float3 color, float3 n, float3 w
   return color * (cos_i * PT_INV_PI);
 }
 
-/* entering: wo is on the front (winding) side, which for a dielectric is the outside. */
+/* entering: wo is on the front (winding) side, which for a dielectric is the outside. u_lobe
+ * picks the lobe of layered materials. */
 inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, float3 color, float3 n, float3 wo, int entering,
-                                   float u1, float u2) {
+                                   float u1, float u2, float u_lobe) {
   PtBsdfSample s;
   s.is_delta = 0;
   s.transmits = 0;
@@ -115,19 +185,25 @@ inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, float3 color, float3 n, 
 #endif
 #ifdef KD_FEATURE_GLOSSY
   if (m->type == PT_ROUGH_CONDUCTOR) {
-    float alpha2 = pt_ggx_alpha2(m->roughness);
-    float tan2 = alpha2 * u1 / fmax(1.0f - u1, 1e-7f);
-    float cos_h = 1.0f / sqrt(1.0f + tan2);
-    float sin_h = sqrt(fmax(0.0f, 1.0f - cos_h * cos_h));
-    float phi = 2.0f * PT_PI * u2;
-    float3 h = pt_to_world((float3)(sin_h * cos(phi), sin_h * sin(phi), cos_h), n);
-    s.wi = 2.0f * dot(wo, h) * h - wo;
+    s.wi = pt_ggx_sample_wi(m->roughness, n, wo, u1, u2);
     float3 f_cos = pt_ggx_eval(color, m->roughness, n, wo, s.wi, &s.pdf);
     s.weight = s.pdf > 0.0f ? f_cos / s.pdf : (float3)(0.0f);
     return s;
   }
 #endif
+#ifdef KD_FEATURE_METALLIC_ROUGHNESS
+  if (m->type == PT_METALLIC_ROUGHNESS) {
+    if (u_lobe < pt_metal_rough_ggx_probability(m, color, dot(n, wo)))
+      s.wi = pt_ggx_sample_wi(m->roughness, n, wo, u1, u2);
+    else
+      s.wi = pt_sample_cosine(n, u1, u2);
+    float3 f_cos = pt_metal_rough_eval(m, color, n, wo, s.wi, &s.pdf);
+    s.weight = s.pdf > 0.0f ? f_cos / s.pdf : (float3)(0.0f);
+    return s;
+  }
+#endif
   (void)entering;
+  (void)u_lobe;
   s.wi = pt_sample_cosine(n, u1, u2);
   s.pdf = fmax(dot(n, s.wi), 0.0f) * PT_INV_PI;
   s.weight = s.pdf > 0.0f ? color : (float3)(0.0f);

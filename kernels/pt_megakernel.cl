@@ -25,7 +25,7 @@ __kernel void pt_render(PT_SCENE_ARGS, __global long* film, __global uint* next_
         pt_path_shade(&path, &scene, params, hit);
         if (path.shadow_pending) {
           ++rays;
-          pt_path_resolve_shadow(&path, kd_intersect_any(&scene.kd, pt_shadow_ray(&path)));
+          pt_path_resolve_shadow(&path, pt_path_occluded(&scene, &path, params));
         }
       }
       pt_path_accumulate(&path, params, sums, &nonfinite);

@@ -9,6 +9,7 @@
 #include "kd_traverse.h"
 #include "pt_bsdf.h"
 #include "pt_lights.h"
+#include "pt_material.h"
 #include "pt_rng.h"
 #include "pt_types.h"
 
@@ -78,6 +79,35 @@ inline float2 pt_path_sample2(const PtPath* path, __global const PtRenderParams*
 inline RayRecord pt_path_ray(const PtPath* path) { return pt_ray(path->origin.xyz, path->direction.xyz, INFINITY); }
 inline RayRecord pt_shadow_ray(const PtPath* path) { return pt_ray(path->shadow_origin.xyz, path->shadow_span.xyz, 1.0f); }
 
+#ifdef KD_FEATURE_ALPHA
+/* A number of the path's current bounce for hashing alpha decisions (kernels/pt_material.h). */
+inline uint pt_path_key(const PtPath* path, __global const PtRenderParams* params) {
+  return pt_hash32(params->seed ^ pt_hash32(path->pixel ^ pt_hash32(path->sample ^ pt_hash32(path->bounce))));
+}
+#define PT_MAX_ALPHA_LAYERS 64
+#endif
+
+/* Whether the shadow ray is blocked; with alpha-tested surfaces, the closest hits are walked and
+ * those the ray passes through skipped (at most PT_MAX_ALPHA_LAYERS of them). */
+inline int pt_path_occluded(const PtSceneData* scene, const PtPath* path, __global const PtRenderParams* params) {
+  RayRecord ray = pt_shadow_ray(path);
+#ifdef KD_FEATURE_ALPHA
+  uint key = pt_path_key(path, params) ^ 0x9e3779b9u; /* decided apart from the bounce ray's */
+  for (int layer = 0; layer < PT_MAX_ALPHA_LAYERS; ++layer) {
+    HitRecord hit = kd_intersect_closest(&scene->kd, ray);
+    if (hit.triangle == KD_NO_HIT) return 0;
+    if (!pt_alpha_passes(scene->indices, scene->material_ids, scene->materials, scene->uvs, scene->textures,
+                         scene->texels, hit.triangle, hit.u, hit.v, key))
+      return 1;
+    ray.tmin = hit.t;
+  }
+  return 1;
+#else
+  (void)params;
+  return kd_intersect_any(&scene->kd, ray);
+#endif
+}
+
 inline void pt_path_begin(PtPath* path, __global const PtRenderParams* params, uint pixel, uint sample) {
   uint x = pixel % params->width, y = pixel / params->width;
   float2 jitter = pt_sample2(params, pixel, sample, PT_DIM_CAMERA_X);
@@ -99,28 +129,6 @@ inline void pt_path_begin(PtPath* path, __global const PtRenderParams* params, u
   path->alive = 1;
   path->shadow_pending = 0;
 }
-
-#ifdef KD_FEATURE_TEXTURES
-inline float3 pt_texel(__global const float4* texels, PtTexture tex, int x, int y) {
-  x = x % (int)tex.width;
-  y = y % (int)tex.height;
-  x += x < 0 ? (int)tex.width : 0;
-  y += y < 0 ? (int)tex.height : 0;
-  return texels[tex.first_texel + (uint)y * tex.width + (uint)x].xyz;
-}
-/* Bilinear lookup with wrapping; v = 0 is the bottom row (OBJ convention). */
-inline float3 pt_texture_lookup(const PtSceneData* scene, int index, float2 uv) {
-  PtTexture tex = scene->textures[index];
-  float fx = uv.x * (float)tex.width - 0.5f;
-  float fy = (1.0f - uv.y) * (float)tex.height - 0.5f;
-  float x0 = floor(fx), y0 = floor(fy);
-  float ax = fx - x0, ay = fy - y0;
-  int ix = (int)x0, iy = (int)y0;
-  float3 top = mix(pt_texel(scene->texels, tex, ix, iy), pt_texel(scene->texels, tex, ix + 1, iy), ax);
-  float3 bottom = mix(pt_texel(scene->texels, tex, ix, iy + 1), pt_texel(scene->texels, tex, ix + 1, iy + 1), ax);
-  return mix(top, bottom, ay);
-}
-#endif
 
 /* Picks an emitter by its share of the emitted power: the first entry whose cdf exceeds u. *u
  * becomes u's position inside that entry's cdf interval, a fresh uniform number in [0, 1) for
@@ -158,14 +166,20 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const
   float3 f_cos = pt_bsdf_eval(m, color, n, wo, wi, &bsdf_pdf);
   if (bsdf_pdf <= 0.0f || dot(wi, ng) <= 0.0f) return;
   PtMaterial light = scene->materials[scene->material_ids[tri]];
-  float3 emission = vload3(0, light.emission);
+  float3 emission = vload3(0, light.emission); /* what the emitter table's pdf is made of */
+#ifdef KD_FEATURE_EMISSIVE_TEXTURE
+  float3 radiance = pt_textured_emission(&light, scene->uvs, scene->textures, scene->texels, scene->indices + 3 * tri,
+                                         b.x, b.y);
+#else
+  float3 radiance = emission;
+#endif
   float light_pdf = PT_SELECT_TRIANGLES(params) * pt_luminance(emission) * params->light_area_pdf_scale * dist2 / cos_light;
   float weight = pt_mis_light(light_pdf, bsdf_pdf);
   float3 origin = pt_offset_origin(p, ng);
   float3 target = pt_offset_origin(y, light_normal);
   path->shadow_origin = (float4)(origin, 0.0f);
   path->shadow_span = (float4)(target - origin, 0.0f);
-  path->shadow_contribution = (float4)(path->throughput.xyz * f_cos * emission * (weight / light_pdf), 0.0f);
+  path->shadow_contribution = (float4)(path->throughput.xyz * f_cos * radiance * (weight / light_pdf), 0.0f);
   path->shadow_pending = 1;
 }
 
@@ -261,13 +275,16 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
   }
 #endif
   PtMaterial m = scene->materials[scene->material_ids[hit.triangle]];
-  float3 color = vload3(0, m.base_color);
-#ifdef KD_FEATURE_TEXTURES
-  if (m.texture >= 0) {
-    float2 uv0 = vload2(idx[0], scene->uvs), uv1 = vload2(idx[1], scene->uvs), uv2 = vload2(idx[2], scene->uvs);
-    color *= pt_texture_lookup(scene, m.texture, w0 * uv0 + hit.u * uv1 + hit.v * uv2);
+#ifdef KD_FEATURE_ALPHA
+  if (m.alpha_cutoff != 0.0f && pt_alpha_passes(scene->indices, scene->material_ids, scene->materials, scene->uvs,
+                                                scene->textures, scene->texels, hit.triangle, hit.u, hit.v,
+                                                pt_path_key(path, params))) {
+    path->origin = (float4)(pt_offset_origin(p, -ng_facing), 0.0f); /* the same bounce goes on beyond */
+    return;
   }
 #endif
+  float3 color = vload3(0, m.base_color);
+  pt_apply_textures(&m, &color, &n, ng_facing, scene->uvs, scene->textures, scene->texels, idx, hit.u, hit.v, p0, p1, p2);
   if (k == 0) {
     path->albedo = (float4)(color, 0.0f);
     path->normal = (float4)(n, 0.0f);
@@ -277,13 +294,18 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
 #ifdef KD_FEATURE_EMISSION
   if (m.type == PT_EMISSIVE && front) {
     float3 emission = vload3(0, m.emission);
+#ifdef KD_FEATURE_EMISSIVE_TEXTURE
+    float3 radiance = pt_textured_emission(&m, scene->uvs, scene->textures, scene->texels, idx, hit.u, hit.v);
+#else
+    float3 radiance = emission;
+#endif
     float weight = 1.0f;
     if (path->bsdf_pdf > 0.0f) {
       float light_pdf = PT_SELECT_TRIANGLES(params) * pt_luminance(emission) * params->light_area_pdf_scale *
                         hit.t * hit.t / dot(ng, wo);
       weight = pt_mis_bsdf(path->bsdf_pdf, light_pdf);
     }
-    path->radiance.xyz += beta * emission * weight;
+    path->radiance.xyz += beta * radiance * weight;
   }
 #endif
   if (k > params->max_bounces) {
@@ -305,7 +327,12 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
   if (params->light_count > 0 && !pt_is_delta(m.type)) pt_next_event(path, scene, params, &m, color, p, n, ng_facing, wo);
 #endif
   float2 u = pt_path_sample2(path, params, PT_DIM_BSDF_U);
-  PtBsdfSample s = pt_bsdf_sample(&m, color, n, wo, front, u.x, u.y);
+#ifdef KD_FEATURE_METALLIC_ROUGHNESS
+  float u_lobe = pt_path_sample(path, params, PT_DIM_LOBE);
+#else
+  float u_lobe = 0.0f;
+#endif
+  PtBsdfSample s = pt_bsdf_sample(&m, color, n, wo, front, u.x, u.y, u_lobe);
   float side = dot(s.wi, ng_facing);
   if (pt_max3(s.weight) <= 0.0f || (s.transmits ? side >= 0.0f : side <= 0.0f)) {
     path->alive = 0;

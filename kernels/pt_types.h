@@ -11,17 +11,25 @@
 #define PT_MIRROR 2u
 #define PT_ROUGH_CONDUCTOR 3u
 #define PT_DIELECTRIC 4u
+#define PT_METALLIC_ROUGHNESS 5u
 
+/* alpha_cutoff: a ray passes where alpha < alpha_cutoff (glTF MASK; 0 for opaque materials), or,
+ * when it is negative, with probability 1 - alpha (glTF BLEND). */
 typedef struct PtMaterial {
   float base_color[3];
   kd_u32 type;
   float emission[3];
   float roughness; /* GGX alpha */
   float ior;
-  kd_i32 texture;  /* index into the PtTexture table or -1 */
-  kd_u32 pad0, pad1;
+  kd_i32 texture;  /* base colour (its alpha is alpha too): index into the PtTexture table or -1 */
+  float metallic;
+  float alpha;
+  float alpha_cutoff;
+  kd_i32 metal_rough_texture; /* linear; G scales sqrt(roughness), B metallic */
+  kd_i32 normal_texture;      /* linear tangent-space normal map */
+  kd_i32 emissive_texture;
 } PtMaterial;
-KD_STATIC_ASSERT(sizeof(PtMaterial) == 48, "PtMaterial is 48 bytes");
+KD_STATIC_ASSERT(sizeof(PtMaterial) == 64, "PtMaterial is 64 bytes");
 
 /* Texels are linear RGBA float4 (decoded from sRGB on the host), rows top to bottom. */
 typedef struct PtTexture {

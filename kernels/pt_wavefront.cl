@@ -52,7 +52,7 @@ __kernel void pt_wave_shadow(PT_SCENE_ARGS, __global PtPath* paths, __global uin
     for (uint i = first; i < min(first + PT_WAVE_BATCH, count); ++i) {
       if (!paths[i].shadow_pending) continue;
       PtPath path = paths[i];
-      pt_path_resolve_shadow(&path, kd_intersect_any(&scene.kd, pt_shadow_ray(&path)));
+      pt_path_resolve_shadow(&path, pt_path_occluded(&scene, &path, params));
       ++rays;
       paths[i] = path;
     }

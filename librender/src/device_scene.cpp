@@ -6,6 +6,8 @@
 #include <kernels/pt_types.h>
 
 #include <cmath>
+#include <map>
+#include <utility>
 
 namespace kdray {
 namespace {
@@ -74,6 +76,22 @@ DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree&
   device.normals = upload_vector(runtime, scene.normals);
   device.uvs = upload_vector(runtime, scene.uvs);
 
+  // Colour textures are sRGB-encoded, normal and metallic-roughness maps are data: a texture
+  // gets one device copy per way it is read.
+  std::vector<PtTexture> textures;
+  std::vector<float> texels;  // RGBA per texel
+  std::map<std::pair<int32_t, bool>, int32_t> device_texture;
+  auto texture_index = [&](int32_t index, bool linear) -> int32_t {
+    if (index < 0 || scene.uvs.empty()) return -1;
+    auto [entry, added] = device_texture.try_emplace({index, linear}, int32_t(textures.size()));
+    if (!added) return entry->second;
+    const Texture& texture = scene.textures[index];
+    textures.push_back(PtTexture{static_cast<kd_u32>(texels.size() / 4), texture.width, texture.height, 0});
+    for (size_t i = 0; i < texture.rgba.size(); ++i)
+      texels.push_back(i % 4 == 3 || linear ? texture.rgba[i] / 255.0f : srgb_to_linear(texture.rgba[i]));
+    return entry->second;
+  };
+
   std::vector<PtMaterial> materials;
   for (const Material& m : scene.materials) {
     PtMaterial pm{};
@@ -86,19 +104,16 @@ DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree&
     pm.emission[2] = m.emission.z;
     pm.roughness = m.roughness;
     pm.ior = m.ior;
-    pm.texture = scene.uvs.empty() ? -1 : m.diffuse_texture;
+    pm.metallic = m.metallic;
+    pm.alpha = m.alpha;
+    pm.alpha_cutoff = m.alpha_mode == AlphaMode::Opaque ? 0.0f : m.alpha_mode == AlphaMode::Blend ? -1.0f : m.alpha_cutoff;
+    pm.texture = texture_index(m.diffuse_texture, false);
+    pm.metal_rough_texture = texture_index(m.metal_rough_texture, true);
+    pm.normal_texture = texture_index(m.normal_texture, true);
+    pm.emissive_texture = texture_index(m.emissive_texture, false);
     materials.push_back(pm);
   }
   device.materials = upload_vector(runtime, materials);
-
-  std::vector<PtTexture> textures;
-  std::vector<float> texels;  // RGBA per texel
-  for (const Texture& texture : scene.textures) {
-    textures.push_back(PtTexture{static_cast<kd_u32>(texels.size() / 4), texture.width, texture.height, 0});
-    for (size_t i = 0; i < texture.rgba.size(); ++i) {
-      texels.push_back(i % 4 == 3 ? texture.rgba[i] / 255.0f : srgb_to_linear(texture.rgba[i]));
-    }
-  }
   device.textures = upload_vector(runtime, textures);
   device.texels = upload_vector(runtime, texels);
 

@@ -160,20 +160,32 @@ std::shared_ptr<const Environment> render_environment(const Scene& scene, const 
 }
 
 std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device) {
-  bool mirror = false, glossy = false, glass = false, textures = false, emission = false;
+  bool mirror = false, glossy = false, glass = false, metal_rough = false, alpha = false;
+  bool color_textures = false, metal_rough_textures = false, normal_maps = false, emissive_textures = false;
+  const bool uvs = !scene.uvs.empty();
   for (const Material& m : scene.materials) {
     mirror |= m.type == MaterialType::Mirror;
     glossy |= m.type == MaterialType::RoughConductor;
     glass |= m.type == MaterialType::Dielectric;
-    textures |= m.diffuse_texture >= 0 && !scene.uvs.empty();
+    metal_rough |= m.type == MaterialType::MetallicRoughness;
+    alpha |= m.alpha_mode != AlphaMode::Opaque;
+    color_textures |= uvs && m.diffuse_texture >= 0;
+    metal_rough_textures |= uvs && m.metal_rough_texture >= 0;
+    normal_maps |= uvs && m.normal_texture >= 0;
+    emissive_textures |= uvs && m.emissive_texture >= 0;
   }
-  emission = !scene.emissive_triangles.empty();
+  const bool emission = !scene.emissive_triangles.empty();
   std::string options = "-cl-std=CL1.2";
   if (emission) options += " -DKD_FEATURE_EMISSION";
   if (mirror) options += " -DKD_FEATURE_MIRROR";
   if (glossy) options += " -DKD_FEATURE_GLOSSY";
   if (glass) options += " -DKD_FEATURE_GLASS";
-  if (textures) options += " -DKD_FEATURE_TEXTURES";
+  if (metal_rough) options += " -DKD_FEATURE_METALLIC_ROUGHNESS";
+  if (alpha) options += " -DKD_FEATURE_ALPHA";
+  if (color_textures || metal_rough_textures || normal_maps || emissive_textures) options += " -DKD_FEATURE_TEXTURES";
+  if (metal_rough_textures) options += " -DKD_FEATURE_METAL_ROUGH_TEXTURE";
+  if (normal_maps) options += " -DKD_FEATURE_NORMAL_MAP";
+  if (emission && emissive_textures) options += " -DKD_FEATURE_EMISSIVE_TEXTURE";
   if (!scene.normals.empty()) options += " -DKD_FEATURE_NORMALS";
   if (render_environment(scene, settings)) options += " -DKD_FEATURE_ENVIRONMENT";
   if (!scene.lights.empty()) options += " -DKD_FEATURE_PUNCTUAL";

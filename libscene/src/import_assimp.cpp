@@ -9,6 +9,7 @@
 
 #include <kdray/error.h>
 
+#include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -72,6 +73,16 @@ SourceMaterial source_material(const aiMaterial& material) {
   if (material.GetTexture(aiTextureType_BASE_COLOR, 0, &texture) == AI_SUCCESS ||
       material.GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS)
     source.diffuse_texture = texture.C_Str();
+  if (material.GetTexture(AI_MATKEY_GLTF_PBRMETALLICROUGHNESS_METALLICROUGHNESS_TEXTURE, &texture) == AI_SUCCESS)
+    source.metal_rough_texture = texture.C_Str();
+  if (material.GetTexture(aiTextureType_NORMALS, 0, &texture) == AI_SUCCESS) source.normal_texture = texture.C_Str();
+  if (material.GetTexture(aiTextureType_EMISSIVE, 0, &texture) == AI_SUCCESS) source.emissive_texture = texture.C_Str();
+  aiString alpha_mode;
+  if (material.Get(AI_MATKEY_GLTF_ALPHAMODE, alpha_mode) == AI_SUCCESS) {
+    const std::string mode = alpha_mode.C_Str();
+    source.alpha_mode = mode == "MASK" ? AlphaMode::Mask : mode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
+    material.Get(AI_MATKEY_GLTF_ALPHACUTOFF, source.alpha_cutoff);
+  }
   return source;
 }
 
@@ -109,14 +120,22 @@ class AssimpConverter {
     for (unsigned i = 0; i < source_.mNumMaterials; ++i) {
       const SourceMaterial source = source_material(*source_.mMaterials[i]);
       Material material = map_material(source);
-      if (!source.diffuse_texture.empty()) {
-        if (const aiTexture* embedded = source_.GetEmbeddedTexture(source.diffuse_texture.c_str()))
-          material.diffuse_texture = embedded_texture(textures, source.diffuse_texture, *embedded);
-        else
-          material.diffuse_texture = textures.from_file((directory / source.diffuse_texture).string(), source.diffuse_texture);
-      }
+      material.diffuse_texture = texture_index(textures, directory, source.diffuse_texture);
+      material.normal_texture = texture_index(textures, directory, source.normal_texture);
+      if (material.type == MaterialType::MetallicRoughness)
+        material.metal_rough_texture = texture_index(textures, directory, source.metal_rough_texture);
+      if (material.type == MaterialType::Emissive)
+        material.emissive_texture = texture_index(textures, directory, source.emissive_texture);
       scene_.materials.push_back(material);
     }
+  }
+
+  // The decoded texture a material names (embedded or a file beside the asset), or -1.
+  int32_t texture_index(TextureCache& textures, const std::filesystem::path& directory, const std::string& reference) {
+    if (reference.empty()) return -1;
+    if (const aiTexture* embedded = source_.GetEmbeddedTexture(reference.c_str()))
+      return embedded_texture(textures, reference, *embedded);
+    return textures.from_file((directory / reference).string(), reference);
   }
 
   int32_t embedded_texture(TextureCache& textures, const std::string& key, const aiTexture& texture) {
@@ -180,7 +199,14 @@ class AssimpConverter {
       const aiMatrix3x3 rotation(transform);
       Camera converted;
       converted.name = camera.mName.C_Str();
-      const aiVector3D position = transform * camera.mPosition;
+      // Assimp 5.2's glTF importer also copies the node's translation into mPosition, which the
+      // node transform then applies a second time: such a position is the node's own.
+      const aiNode* node = source_.mRootNode->FindNode(camera.mName);
+      const aiVector3D local_translation = node ? aiVector3D(node->mTransformation.a4, node->mTransformation.b4,
+                                                             node->mTransformation.c4)
+                                                : aiVector3D();
+      const bool position_is_node_translation = camera.mPosition != aiVector3D() && camera.mPosition == local_translation;
+      const aiVector3D position = transform * (position_is_node_translation ? aiVector3D() : camera.mPosition);
       converted.position = to_vec3(position);
       converted.target = to_vec3(position + rotation * camera.mLookAt);
       converted.up = normalized(rotation * camera.mUp);

@@ -27,17 +27,27 @@ Material map_material(const SourceMaterial& source) {
     material.emission = source.emission;
     return material;
   }
-  if (source.opacity < 1.0f || source.transmission > 0 || is_mtl_glass_model(source.illum)) {
+  material.ior = source.ior > 1.0f ? source.ior : kDefaultGlassIor;
+  if (source.alpha_mode) {
+    material.alpha_mode = *source.alpha_mode;
+    material.alpha = std::clamp(source.opacity, 0.0f, 1.0f);
+    material.alpha_cutoff = source.alpha_cutoff;
+  }
+  const bool see_through = source.alpha_mode ? false : source.opacity < 1.0f;
+  if (see_through || source.transmission > 0 || is_mtl_glass_model(source.illum)) {
     material.type = MaterialType::Dielectric;
     material.base_color = {1, 1, 1};
-    material.ior = source.ior > 1.0f ? source.ior : kDefaultGlassIor;
     return material;
   }
   if (source.metallic) {  // PBR metal/roughness source
-    if (*source.metallic < 0.5f) return material;
     const float perceptual = std::clamp(source.roughness.value_or(1.0f), 0.0f, 1.0f);
     material.roughness = perceptual * perceptual;
-    material.type = material.roughness < kMirrorAlpha ? MaterialType::Mirror : MaterialType::RoughConductor;
+    if (*source.metallic >= 1.0f && source.metal_rough_texture.empty()) {
+      material.type = material.roughness < kMirrorAlpha ? MaterialType::Mirror : MaterialType::RoughConductor;
+      return material;
+    }
+    material.type = MaterialType::MetallicRoughness;
+    material.metallic = std::clamp(*source.metallic, 0.0f, 1.0f);
     return material;
   }
   // Phong-style source: specular-dominated surfaces become conductors, with the Phong

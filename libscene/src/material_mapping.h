@@ -23,6 +23,12 @@ struct SourceMaterial {
   std::optional<float> metallic;   // PBR metallic factor, when the source has one
   std::optional<float> roughness;  // PBR perceptual roughness
   std::string diffuse_texture;     // path or embedded-texture reference; empty if none
+  std::string metal_rough_texture;  // glTF metallic-roughness texture
+  std::string normal_texture;
+  std::string emissive_texture;
+  // glTF sources name an alpha mode; their opacity is then the base colour's alpha, not glass.
+  std::optional<AlphaMode> alpha_mode;
+  float alpha_cutoff = 0.5f;
 };
 
 Material map_material(const SourceMaterial& source);

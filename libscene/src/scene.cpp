@@ -17,6 +17,16 @@ const char* material_type_name(MaterialType type) {
     case MaterialType::Mirror: return "mirror";
     case MaterialType::RoughConductor: return "rough-conductor";
     case MaterialType::Dielectric: return "dielectric";
+    case MaterialType::MetallicRoughness: return "metallic-roughness";
+  }
+  return "unknown";
+}
+
+const char* alpha_mode_name(AlphaMode mode) {
+  switch (mode) {
+    case AlphaMode::Opaque: return "opaque";
+    case AlphaMode::Mask: return "mask";
+    case AlphaMode::Blend: return "blend";
   }
   return "unknown";
 }

@@ -26,6 +26,8 @@ void put(OutputArchive& archive, const Material& material) {
   put_vec3(archive, material.base_color);
   put_vec3(archive, material.emission);
   archive(material.roughness, material.ior, material.diffuse_texture);
+  archive(material.metallic, material.alpha, static_cast<uint32_t>(material.alpha_mode), material.alpha_cutoff);
+  archive(material.metal_rough_texture, material.normal_texture, material.emissive_texture);
 }
 
 void put(OutputArchive& archive, const Camera& camera) {
@@ -156,16 +158,24 @@ Light get_light(Decoder& decoder) {
   return light;
 }
 
-Material get_material(Decoder& decoder) {
+// Version 3 added the metallic-roughness type and the fields after diffuse_texture.
+Material get_material(Decoder& decoder, uint32_t version) {
   Material material;
   material.name = decoder.get_string();
   uint32_t type = 0;
   decoder.get(type);
-  if (type > static_cast<uint32_t>(MaterialType::Dielectric)) decoder.fail("unknown material type " + std::to_string(type));
+  const MaterialType last = version >= 3 ? MaterialType::MetallicRoughness : MaterialType::Dielectric;
+  if (type > static_cast<uint32_t>(last)) decoder.fail("unknown material type " + std::to_string(type));
   material.type = static_cast<MaterialType>(type);
   material.base_color = decoder.get_vec3();
   material.emission = decoder.get_vec3();
   decoder.get(material.roughness, material.ior, material.diffuse_texture);
+  if (version < 3) return material;
+  uint32_t alpha_mode = 0;
+  decoder.get(material.metallic, material.alpha, alpha_mode, material.alpha_cutoff);
+  if (alpha_mode > static_cast<uint32_t>(AlphaMode::Blend)) decoder.fail("unknown alpha mode " + std::to_string(alpha_mode));
+  material.alpha_mode = static_cast<AlphaMode>(alpha_mode);
+  decoder.get(material.metal_rough_texture, material.normal_texture, material.emissive_texture);
   return material;
 }
 
@@ -232,8 +242,9 @@ std::string encode_scene_info(const SceneInfo& info) {
   return stream.str();
 }
 
-std::vector<Material> decode_materials(const std::string& path, const std::vector<char>& bytes) {
-  return decode_list<Material>(path, "materials", bytes, kMinMaterialBytes, get_material);
+std::vector<Material> decode_materials(const std::string& path, const std::vector<char>& bytes, uint32_t version) {
+  return decode_list<Material>(path, "materials", bytes, kMinMaterialBytes,
+                               [version](Decoder& decoder) { return get_material(decoder, version); });
 }
 std::vector<Camera> decode_cameras(const std::string& path, const std::vector<char>& bytes) {
   return decode_list<Camera>(path, "cameras", bytes, kMinCameraBytes, get_camera);

@@ -56,9 +56,11 @@ std::string first_inconsistency(const Scene& scene) {
   for (uint32_t triangle : scene.emissive_triangles)
     if (triangle >= triangles) return "emissive triangle " + std::to_string(triangle) + " does not exist";
   for (const Material& material : scene.materials)
-    if (material.diffuse_texture < -1 || material.diffuse_texture >= int64_t(scene.textures.size()))
-      return "material '" + material.name + "' refers to texture " + std::to_string(material.diffuse_texture) + " of " +
-             std::to_string(scene.textures.size());
+    for (int32_t texture : {material.diffuse_texture, material.metal_rough_texture, material.normal_texture,
+                            material.emissive_texture})
+      if (texture < -1 || texture >= int64_t(scene.textures.size()))
+        return "material '" + material.name + "' refers to texture " + std::to_string(texture) + " of " +
+               std::to_string(scene.textures.size());
   for (const Light& light : scene.lights) {
     const float length2 = light.direction.x * light.direction.x + light.direction.y * light.direction.y +
                           light.direction.z * light.direction.z;
@@ -186,7 +188,7 @@ Scene read_scene(const std::string& path) {
     if (bool(flags & flag) != collector.has(section))
       throw Error(path, "header flags disagree with the sections present (section " + std::to_string(section) + ")");
 
-  scene.materials = encoding::decode_materials(path, collector.materials);
+  scene.materials = encoding::decode_materials(path, collector.materials, contents.header.version);
   scene.cameras = encoding::decode_cameras(path, collector.cameras);
   if (collector.has(kSceneTextures)) scene.textures = encoding::decode_textures(path, collector.textures);
   if (collector.has(kSceneLights)) scene.lights = encoding::decode_lights(path, collector.lights);

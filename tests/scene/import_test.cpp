@@ -283,7 +283,9 @@ TEST_F(Import, AssetCamerasComeWithTheirNodeTransforms) {
   const Scene scene = import(path);
   ASSERT_EQ(scene.cameras.size(), 2u);
   EXPECT_EQ(scene.cameras[0].name, "nodes[1]");
-  EXPECT_FLOAT_EQ(scene.cameras[0].position.z, 6);  // the node's translation
+  // The node translation (0.5, 0.5, 3), once: Assimp also copies it into mPosition.
+  EXPECT_FLOAT_EQ(scene.cameras[0].position.x, 0.5f);
+  EXPECT_FLOAT_EQ(scene.cameras[0].position.z, 3);
   EXPECT_NEAR(scene.cameras[0].vertical_fov_degrees, 0.7 * 180 / M_PI, 1e-3);  // glTF yfov 0.7
 
   ImportOptions by_index;

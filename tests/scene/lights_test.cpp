@@ -1,5 +1,6 @@
 // Punctual lights: Assimp's glTF KHR_lights_punctual import (node transforms, colour x
-// intensity, spot half-angles), the .kdscene lights section and its round trip, version 1 files.
+// intensity, spot half-angles), the .kdscene lights section and its round trip (older versions:
+// materials_test.cpp).
 #include "scene_test_util.h"
 
 #include <kdray/container_file.h>
@@ -105,23 +106,6 @@ TEST_F(LightsFile, ASceneWithoutLightsKeepsItsVersionOneHash) {
   with_light.lights.push_back(Light{});
   EXPECT_NE(compute_content_hash(with_light), compute_content_hash(scene));
   EXPECT_EQ(compute_content_hash(scene), scene.content_hash);
-}
-
-TEST_F(LightsFile, VersionOneFilesStillRead) {
-  // A version 1 file is a version 2 file without a lights section: patch the version field
-  // (the header is outside the payload checksum) and read it back.
-  Scene scene = test::make_quad_scene(true, true, false);
-  write_scene(path("v1.kdscene"), scene);
-  {
-    std::fstream file(path("v1.kdscene"), std::ios::in | std::ios::out | std::ios::binary);
-    const uint32_t version = 1;
-    file.seekp(offsetof(format::FileHeader, version));
-    file.write(reinterpret_cast<const char*>(&version), sizeof version);
-  }
-  EXPECT_EQ(peek_scene(path("v1.kdscene")).version, 1u);
-  Scene loaded = read_scene(path("v1.kdscene"));
-  EXPECT_TRUE(loaded.lights.empty());
-  EXPECT_EQ(loaded.content_hash, scene.content_hash);
 }
 
 TEST_F(LightsFile, ABadLightIsRefusedOnWrite) {

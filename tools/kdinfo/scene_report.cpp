@@ -65,7 +65,14 @@ json scene_json(const Scene& scene) {
                          {"emission", vec3_json(m.emission)},
                          {"roughness", m.roughness},
                          {"ior", m.ior},
-                         {"diffuse_texture", m.diffuse_texture}});
+                         {"diffuse_texture", m.diffuse_texture},
+                         {"metallic", m.metallic},
+                         {"alpha", m.alpha},
+                         {"alpha_mode", alpha_mode_name(m.alpha_mode)},
+                         {"alpha_cutoff", m.alpha_cutoff},
+                         {"metal_rough_texture", m.metal_rough_texture},
+                         {"normal_texture", m.normal_texture},
+                         {"emissive_texture", m.emissive_texture}});
   json textures = json::array();
   for (const kdray::Texture& t : scene.textures)
     textures.push_back({{"name", t.name}, {"width", t.width}, {"height", t.height}});
@@ -127,7 +134,17 @@ std::string scene_text(const json& j) {
                      m["emission"][2].get<double>());
     if (m["type"] == "rough-conductor") text += format(" roughness %.3g", m["roughness"].get<double>());
     if (m["type"] == "dielectric") text += format(" ior %.3g", m["ior"].get<double>());
+    if (m["type"] == "metallic-roughness")
+      text += format(" metallic %.3g roughness %.3g ior %.3g", m["metallic"].get<double>(), m["roughness"].get<double>(),
+                     m["ior"].get<double>());
+    if (m["alpha_mode"] != "opaque")
+      text += format(" alpha %.3g (%s, cutoff %.3g)", m["alpha"].get<double>(),
+                     m["alpha_mode"].get<std::string>().c_str(), m["alpha_cutoff"].get<double>());
     if (m["diffuse_texture"].get<int>() >= 0) text += format(" texture %d", m["diffuse_texture"].get<int>());
+    if (m["metal_rough_texture"].get<int>() >= 0)
+      text += format(" metal-rough texture %d", m["metal_rough_texture"].get<int>());
+    if (m["normal_texture"].get<int>() >= 0) text += format(" normal map %d", m["normal_texture"].get<int>());
+    if (m["emissive_texture"].get<int>() >= 0) text += format(" emissive texture %d", m["emissive_texture"].get<int>());
     text += "\n";
   }
   text += format("textures   %zu\n", j["textures"].size());

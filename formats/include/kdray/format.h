@@ -36,8 +36,9 @@ constexpr uint32_t kMaxSections = 64;
 
 // ---- .kdscene -------------------------------------------------------------------------
 constexpr char kSceneMagic[8] = {'K', 'D', 'S', 'C', 'E', 'N', 'E', '\0'};
-// Version 2 added punctual lights (kSceneLights); version 1 files are still read.
-constexpr uint32_t kSceneVersion = 2;
+// Version 2 added punctual lights (kSceneLights), version 3 the metallic-roughness material and
+// its texture and alpha fields; version 1 and 2 files are still read.
+constexpr uint32_t kSceneVersion = 3;
 
 enum SceneSection : uint32_t {
   kScenePositions = 1,       // float32 x,y,z per vertex

@@ -23,7 +23,17 @@ enum class MaterialType : uint32_t {
   Mirror = 2,          // perfect specular reflection tinted by base_color
   RoughConductor = 3,  // GGX microfacet reflection, roughness = alpha, Fresnel-Schlick with base_color as F0
   Dielectric = 4,      // smooth glass with index of refraction ior
+  // glTF metallic-roughness: a GGX conductor with base_color as F0, weighted by metallic, over a
+  // diffuse base_color under a dielectric GGX coat of index ior (Mitsuba's roughplastic), weighted
+  // 1 - metallic; roughness = alpha of both GGX lobes.
+  MetallicRoughness = 5,
 };
+
+// glTF alpha modes: Mask cuts out where alpha < alpha_cutoff, Blend lets a ray through with
+// probability 1 - alpha (stochastic transparency).
+enum class AlphaMode : uint32_t { Opaque = 0, Mask = 1, Blend = 2 };
+
+const char* alpha_mode_name(AlphaMode mode);
 
 const char* material_type_name(MaterialType type);
 
@@ -34,7 +44,15 @@ struct Material {
   Vec3 emission{0, 0, 0};
   float roughness = 1.0f;     // GGX alpha for RoughConductor
   float ior = 1.5f;           // Dielectric
-  int32_t diffuse_texture = -1;  // index into Scene::textures, or -1
+  int32_t diffuse_texture = -1;  // index into Scene::textures, or -1; its alpha channel is alpha too
+  // Format version 3 on (older files read the defaults).
+  float metallic = 0;            // MetallicRoughness
+  float alpha = 1;               // opacity for alpha_mode, times the base-colour texture's alpha
+  AlphaMode alpha_mode = AlphaMode::Opaque;
+  float alpha_cutoff = 0.5f;
+  int32_t metal_rough_texture = -1;  // glTF layout, linear: G scales sqrt(roughness), B metallic
+  int32_t normal_texture = -1;       // tangent-space normal map, linear, +Y towards +v
+  int32_t emissive_texture = -1;     // sRGB, multiplies emission
 };
 
 // Decoded at conversion time: 8-bit sRGB-encoded RGBA, rows top to bottom.

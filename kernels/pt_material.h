@@ -1,0 +1,126 @@
+/* What a material's textures and alpha do at a hit: the base colour, metallic-roughness and
+ * emissive textures, the normal map, and the alpha test that lets rays pass through cut-out or
+ * blended surfaces. Each part is compiled only for scenes that have it. Traversal itself never
+ * reads a material: a ray that hits an alpha-tested surface is continued past it by the shading
+ * step (camera and bounce rays) or by pt_occluded (shadow rays), so rays through opaque scenes
+ * cost what they did. OpenCL C only. */
+#ifndef PT_MATERIAL_H
+#define PT_MATERIAL_H
+
+#include "kd_traverse.h"
+#include "pt_rng.h"
+#include "pt_types.h"
+
+#ifdef KD_FEATURE_TEXTURES
+inline float4 pt_texel(__global const float4* texels, PtTexture tex, int x, int y) {
+  x = x % (int)tex.width;
+  y = y % (int)tex.height;
+  x += x < 0 ? (int)tex.width : 0;
+  y += y < 0 ? (int)tex.height : 0;
+  return texels[tex.first_texel + (uint)y * tex.width + (uint)x];
+}
+/* Bilinear lookup with wrapping; v = 0 is the bottom row (OBJ convention). */
+inline float4 pt_texture_lookup(__global const PtTexture* textures, __global const float4* texels, int index,
+                                 float2 uv) {
+  PtTexture tex = textures[index];
+  float fx = uv.x * (float)tex.width - 0.5f;
+  float fy = (1.0f - uv.y) * (float)tex.height - 0.5f;
+  float x0 = floor(fx), y0 = floor(fy);
+  float ax = fx - x0, ay = fy - y0;
+  int ix = (int)x0, iy = (int)y0;
+  float4 top = mix(pt_texel(texels, tex, ix, iy), pt_texel(texels, tex, ix + 1, iy), ax);
+  float4 bottom = mix(pt_texel(texels, tex, ix, iy + 1), pt_texel(texels, tex, ix + 1, iy + 1), ax);
+  return mix(top, bottom, ay);
+}
+/* The interpolated UV of barycentric point (u, v) of a triangle with vertex numbers idx. */
+inline float2 pt_triangle_uv(__global const float* uvs, __global const kd_u32* idx, float u, float v) {
+  return (1.0f - u - v) * vload2(idx[0], uvs) + u * vload2(idx[1], uvs) + v * vload2(idx[2], uvs);
+}
+#endif
+
+#ifdef KD_FEATURE_NORMAL_MAP
+/* The normal map's normal in world space. The tangent frame is the triangle's own (dp/du, dp/dv
+ * from its positions and UVs, made orthogonal to the shading normal n): per triangle, where
+ * MikkTSpace would smooth tangents across vertices, so seams between triangles whose UV layouts
+ * disagree can show. */
+inline float3 pt_normal_mapped(float3 n, float3 p0, float3 p1, float3 p2, float2 uv0, float2 uv1, float2 uv2,
+                               float3 mapped) {
+  float2 d1 = uv1 - uv0, d2 = uv2 - uv0;
+  float det = d1.x * d2.y - d1.y * d2.x;
+  if (det == 0.0f) return n;
+  float3 e1 = p1 - p0, e2 = p2 - p0;
+  float3 dpdu = (e1 * d2.y - e2 * d1.y) / det;
+  float3 dpdv = (e2 * d1.x - e1 * d2.x) / det;
+  float3 t = dpdu - dot(dpdu, n) * n;
+  if (!(dot(t, t) > 0.0f)) return n;
+  t = normalize(t);
+  float3 b = cross(n, t);
+  if (dot(b, dpdv) < 0.0f) b = -b; /* mirrored UVs */
+  float3 mapped_n = mapped.x * t + mapped.y * b + mapped.z * n;
+  return dot(mapped_n, mapped_n) > 0.0f ? normalize(mapped_n) : n;
+}
+#endif
+
+/* Applies the material's textures at a hit: base colour, metallic and roughness into *m and
+ * *color, the normal map into *n (kept on the side of ng_facing). */
+inline void pt_apply_textures(PtMaterial* m, float3* color, float3* n, float3 ng_facing, __global const float* uvs,
+                              __global const PtTexture* textures, __global const float4* texels,
+                              __global const kd_u32* idx, float u, float v, float3 p0, float3 p1, float3 p2) {
+#ifdef KD_FEATURE_TEXTURES
+  float2 uv = pt_triangle_uv(uvs, idx, u, v);
+  if (m->texture >= 0) *color *= pt_texture_lookup(textures, texels, m->texture, uv).xyz;
+#ifdef KD_FEATURE_METAL_ROUGH_TEXTURE
+  if (m->metal_rough_texture >= 0) {
+    float4 mr = pt_texture_lookup(textures, texels, m->metal_rough_texture, uv);
+    m->roughness *= mr.y * mr.y; /* the factor and the texel scale the perceptual roughness */
+    m->metallic *= mr.z;
+  }
+#endif
+#ifdef KD_FEATURE_NORMAL_MAP
+  if (m->normal_texture >= 0) {
+    float3 mapped = 2.0f * pt_texture_lookup(textures, texels, m->normal_texture, uv).xyz - 1.0f;
+    float3 mn = pt_normal_mapped(*n, p0, p1, p2, vload2(idx[0], uvs), vload2(idx[1], uvs), vload2(idx[2], uvs), mapped);
+    /* A mapped normal may not face away from the viewer's side of the surface. */
+    *n = dot(mn, ng_facing) > 1e-4f ? mn : *n;
+  }
+#endif
+#endif
+  (void)m, (void)color, (void)n, (void)ng_facing, (void)uvs, (void)textures, (void)texels, (void)idx;
+  (void)u, (void)v, (void)p0, (void)p1, (void)p2;
+}
+
+#ifdef KD_FEATURE_EMISSIVE_TEXTURE
+/* Emission of an emissive material at barycentric point (u, v) of a triangle. */
+inline float3 pt_textured_emission(const PtMaterial* m, __global const float* uvs, __global const PtTexture* textures,
+                                   __global const float4* texels, __global const kd_u32* idx, float u, float v) {
+  float3 emission = vload3(0, m->emission);
+  if (m->emissive_texture >= 0)
+    emission *= pt_texture_lookup(textures, texels, m->emissive_texture, pt_triangle_uv(uvs, idx, u, v)).xyz;
+  return emission;
+}
+#endif
+
+#ifdef KD_FEATURE_ALPHA
+/* Whether a ray passes through triangle `tri` at barycentric (u, v). Blended surfaces let it pass
+ * with probability 1 - alpha, decided by a hash of the path and the triangle, so every layer a
+ * path meets draws its own number and the decision does not depend on the thread. */
+inline int pt_alpha_passes(__global const kd_u32* indices, __global const kd_u32* material_ids,
+                           __global const PtMaterial* materials, __global const float* uvs,
+                           __global const PtTexture* textures, __global const float4* texels, uint tri, float u,
+                           float v, uint path_key) {
+  __global const PtMaterial* m = &materials[material_ids[tri]];
+  float cutoff = m->alpha_cutoff;
+  if (cutoff == 0.0f) return 0;
+  float alpha = m->alpha;
+#ifdef KD_FEATURE_TEXTURES
+  if (m->texture >= 0)
+    alpha *= pt_texture_lookup(textures, texels, m->texture, pt_triangle_uv(uvs, indices + 3 * tri, u, v)).w;
+#endif
+  (void)indices, (void)uvs, (void)textures, (void)texels, (void)u, (void)v;
+  if (cutoff > 0.0f) return alpha < cutoff;
+  float r = (float)(pt_hash32(path_key ^ pt_hash32(tri)) >> 8) * 0x1.0p-24f;
+  return r >= alpha;
+}
+#endif
+
+#endif /* PT_MATERIAL_H */

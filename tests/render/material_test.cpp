@@ -1,0 +1,185 @@
+// glTF metallic-roughness and alpha, known answers: a white base under a smooth dielectric coat
+// reflects everything (white furnace), a rough coat loses no more than GGX's missing multiple
+// scattering, a black base shows the coat alone (not a diffuse surface), a smooth full metal is a
+// mirror of its base colour; fully cut-out surfaces let camera and shadow rays through and blended
+// ones a share alpha of them; the features are compiled only when a scene has them.
+#include "light_scenes.h"
+#include "render_fixture.h"
+#include "test_scenes.h"
+
+#include <kdray/render.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace kdray {
+namespace {
+
+Material metal_rough(Vec3 base, float metallic, float roughness_alpha) {
+  Material m;
+  m.type = MaterialType::MetallicRoughness;
+  m.base_color = base;
+  m.metallic = metallic;
+  m.roughness = roughness_alpha;
+  return m;
+}
+
+struct SphereImage {
+  Film film;
+  std::vector<float> means;
+  RenderStats stats;
+  // Means of the three channels over the sphere pixels within `radius` (as a share of the
+  // sphere's image radius) of its centre; the depth AOV tells sphere from background.
+  Vec3 mean_within(float radius) const {
+    const size_t channels = film.channels.size();
+    double sum[3] = {0, 0, 0};
+    size_t count = 0;
+    const double cx = film.width / 2.0, cy = film.height / 2.0, sphere_radius = sphere_pixels_radius();
+    for (uint32_t y = 0; y < film.height; ++y)
+      for (uint32_t x = 0; x < film.width; ++x) {
+        const float* px = &means[(size_t(y) * film.width + x) * channels];
+        const double dx = x + 0.5 - cx, dy = y + 0.5 - cy;
+        if (px[3] <= 0 || std::sqrt(dx * dx + dy * dy) > radius * sphere_radius) continue;
+        for (int c = 0; c < 3; ++c) sum[c] += px[c];
+        ++count;
+      }
+    EXPECT_GT(count, 20u);
+    std::printf("sphere mean within %.2f: %.5f %.5f %.5f\n", radius, sum[0] / count, sum[1] / count, sum[2] / count);
+    return {float(sum[0] / count), float(sum[1] / count), float(sum[2] / count)};
+  }
+  double sphere_pixels_radius() const {
+    size_t hits = 0;
+    const size_t channels = film.channels.size();
+    for (size_t p = 0; p < film.pixel_count(); ++p) hits += means[p * channels + 3] > 0;
+    return std::sqrt(hits / 3.14159265358979323846);
+  }
+};
+
+// The sphere of light_scenes.h under a uniform environment of radiance 1.
+SphereImage render_sphere(const Material& material, uint32_t spp = 256) {
+  Scene scene = test::make_sphere_scene(material);
+  KdTree tree = test::tree_for(scene);
+  RenderSettings settings = test::tiny_settings(32, spp);
+  settings.environment = test::shared_environment(uniform_environment({1, 1, 1}));
+  settings.max_bounces = 8;
+  settings.aov_depth = true;
+  SphereImage image;
+  image.film = render(scene, tree, settings, DeviceSelection{}, &image.stats);
+  image.means = image.film.means();
+  EXPECT_EQ(image.stats.nonfinite_values, 0u);
+  return image;
+}
+
+TEST(MetallicRoughness, WhiteBaseUnderASmoothCoatReflectsEverything) {
+  // Coat reflectance F plus the base's share (1 - F(wo)) of the rest: 1 at every angle.
+  SphereImage image = render_sphere(metal_rough({1, 1, 1}, 0, 0.0f));
+  EXPECT_NE(image.stats.kernel_options.find("KD_FEATURE_METALLIC_ROUGHNESS"), std::string::npos);
+  const Vec3 mean = image.mean_within(0.9f);
+  for (float c : {mean.x, mean.y, mean.z}) EXPECT_NEAR(c, 1.0f, 0.01f);
+}
+
+TEST(MetallicRoughness, WhiteBaseUnderARoughCoatLosesOnlyAFewPercent) {
+  // Single-scattering GGX loses the light that would scatter between microfacets; the base's
+  // share stays 1 - F, so the total is a little below 1 and never above.
+  for (float alpha : {0.1f, 0.5f}) {
+    const Vec3 mean = render_sphere(metal_rough({1, 1, 1}, 0, alpha)).mean_within(0.9f);
+    EXPECT_LT(mean.x, 1.01f) << alpha;
+    EXPECT_GT(mean.x, 0.95f) << alpha;
+  }
+}
+
+TEST(MetallicRoughness, BlackBaseShowsTheCoatNotADiffuseSurface) {
+  // Seen head-on, a smooth coat of index 1.5 reflects the environment with F(0) = 0.04; a
+  // diffuse surface of albedo 0 would be black.
+  const Vec3 centre = render_sphere(metal_rough({0, 0, 0}, 0, 0.0f)).mean_within(0.3f);
+  EXPECT_NEAR(centre.x, 0.04f, 0.004f);
+  EXPECT_NEAR(centre.z, 0.04f, 0.004f);
+}
+
+TEST(MetallicRoughness, SmoothFullMetalIsAMirrorOfItsBaseColour) {
+  // Near normal incidence Schlick's Fresnel is the base colour itself.
+  const Vec3 base{0.9f, 0.5f, 0.2f};
+  Material mirror;
+  mirror.type = MaterialType::Mirror;
+  mirror.base_color = base;
+  const Vec3 want = render_sphere(mirror, 16).mean_within(0.4f);
+  const Vec3 got = render_sphere(metal_rough(base, 1, 0.0f)).mean_within(0.4f);
+  EXPECT_NEAR(want.x, 0.9f, 1e-4f);
+  EXPECT_NEAR(got.x, want.x, 0.01f * want.x);
+  EXPECT_NEAR(got.y, want.y, 0.01f * want.y);
+  EXPECT_NEAR(got.z, want.z, 0.01f * want.z);
+}
+
+// A diffuse floor under a directional light shining straight down, seen from above, with a
+// black quad between camera, light and floor.
+constexpr float kFloorAlbedo = 0.5f, kIrradiance = 2.0f;
+Film render_floor_under(const Material* occluder, RenderStats* stats) {
+  Scene scene;
+  Material floor;
+  floor.base_color = {kFloorAlbedo, kFloorAlbedo, kFloorAlbedo};
+  scene.materials.push_back(floor);
+  const float s = 10;
+  test::add_quad(scene, {{{-s, 0, -s}, {-s, 0, s}, {s, 0, s}, {s, 0, -s}}}, 0);
+  if (occluder) {
+    scene.materials.push_back(*occluder);
+    test::add_quad(scene, {{{-s, 1, -s}, {-s, 1, s}, {s, 1, s}, {s, 1, -s}}}, 1);
+  }
+  Camera camera;
+  camera.position = {0, 4, 0};
+  camera.target = {0, 0, 0};
+  camera.up = {0, 0, -1};
+  camera.vertical_fov_degrees = 10;
+  scene.cameras.push_back(camera);
+  Light light;
+  light.type = LightType::Directional;
+  light.direction = {0, -1, 0};
+  light.color = {kIrradiance, kIrradiance, kIrradiance};
+  scene.lights.push_back(light);
+  KdTree tree = test::tree_for(scene);
+  RenderSettings settings = test::tiny_settings(8, 256);
+  Film film = render(scene, tree, settings, DeviceSelection{}, stats);
+  EXPECT_EQ(stats->nonfinite_values, 0u);
+  return film;
+}
+
+double image_mean(const Film& film) {
+  std::vector<float> means = film.means();
+  double sum = 0;
+  for (float v : means) sum += v;
+  return sum / means.size();
+}
+
+Material black_with_alpha(AlphaMode mode, float alpha) {
+  Material m;
+  m.base_color = {0, 0, 0};
+  m.alpha_mode = mode;
+  m.alpha = alpha;
+  return m;
+}
+
+TEST(Alpha, CutOutSurfaceLetsCameraAndShadowRaysThrough) {
+  const double lit = kFloorAlbedo * kIrradiance / 3.14159265358979323846;
+  RenderStats stats;
+  EXPECT_NEAR(image_mean(render_floor_under(nullptr, &stats)), lit, 1e-4);
+  EXPECT_EQ(stats.kernel_options.find("KD_FEATURE_ALPHA"), std::string::npos);
+  const Material cut = black_with_alpha(AlphaMode::Mask, 0.3f);  // below the cutoff 0.5
+  EXPECT_NEAR(image_mean(render_floor_under(&cut, &stats)), lit, 1e-4);
+  EXPECT_NE(stats.kernel_options.find("KD_FEATURE_ALPHA"), std::string::npos);
+  const Material kept = black_with_alpha(AlphaMode::Mask, 0.6f);
+  EXPECT_EQ(image_mean(render_floor_under(&kept, &stats)), 0.0);
+  const Material opaque = black_with_alpha(AlphaMode::Opaque, 0.0f);  // alpha unused
+  EXPECT_EQ(image_mean(render_floor_under(&opaque, &stats)), 0.0);
+}
+
+TEST(Alpha, BlendedSurfaceLetsThroughOneMinusAlphaOfTheRays) {
+  // Camera rays pass with probability 1 - alpha, and so do the floor's shadow rays.
+  const double lit = kFloorAlbedo * kIrradiance / 3.14159265358979323846;
+  RenderStats stats;
+  const Material veil = black_with_alpha(AlphaMode::Blend, 0.5f);
+  EXPECT_NEAR(image_mean(render_floor_under(&veil, &stats)) / lit, 0.25, 0.02);
+}
+
+}  // namespace
+}  // namespace kdray

@@ -6,7 +6,7 @@
 # The reference (REPORT_REFERENCE_SPP samples, seed 1; the series uses seed 0) is rendered once
 # and kept in $(OUT)/report until the scene or tree changes. Smaller settings for a quick look:
 #   make -C samples report REPORT_SIZE=64 REPORT_SPP=64 REPORT_REFERENCE_SPP=1024
-REPORT_SCENES ?= cornell-box
+REPORT_SCENES ?= cornell-box textured-scene bunnies clearcoat
 REPORT_SIZE ?= 256
 REPORT_SPP ?= 256
 REPORT_REFERENCE_SPP ?= 4096
@@ -17,6 +17,8 @@ SPEED_VS_ERROR = /usr/bin/python3 ../scripts/speed_vs_error.py
 
 # kdrender options per scene (the camera, where the scene file has none).
 REPORT_VIEW_cornell-box = $(CORNELL_VIEW)
+REPORT_VIEW_bunnies = $(BUNNIES_VIEW)
+REPORT_VIEW_clearcoat = $(CLEARCOAT_VIEW)
 
 .PHONY: report
 report: $(foreach scene,$(REPORT_SCENES),$(OUT)/report/$(scene).csv $(OUT)/report/$(scene).png)

@@ -2,6 +2,7 @@
 #include "device_scene.h"
 
 #include <kdray/traverse.h>
+#include <kdray/util.h>
 
 #include <kernels/pt_types.h>
 
@@ -21,11 +22,6 @@ double triangle_area(const Scene& scene, uint32_t triangle) {
   double e1[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, e2[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
   double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
   return 0.5 * std::sqrt(cx * cx + cy * cy + cz * cz);
-}
-
-float srgb_to_linear(uint8_t value) {
-  float c = value / 255.0f;
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
 template <typename T>
@@ -88,7 +84,7 @@ DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree&
     const Texture& texture = scene.textures[index];
     textures.push_back(PtTexture{static_cast<kd_u32>(texels.size() / 4), texture.width, texture.height, 0});
     for (size_t i = 0; i < texture.rgba.size(); ++i)
-      texels.push_back(i % 4 == 3 || linear ? texture.rgba[i] / 255.0f : srgb_to_linear(texture.rgba[i]));
+      texels.push_back(i % 4 == 3 || linear ? texture.rgba[i] / 255.0f : srgb_to_linear(texture.rgba[i] / 255.0f));
     return entry->second;
   };
 

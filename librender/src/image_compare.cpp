@@ -1,6 +1,7 @@
 #include <kdray/atomic_file.h>
 #include <kdray/error.h>
 #include <kdray/image_compare.h>
+#include <kdray/util.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -13,15 +14,6 @@
 
 namespace kdray {
 namespace {
-
-namespace fs = std::filesystem;
-
-std::string lowercase_extension(const std::string& path) {
-  std::string extension = fs::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
-  return extension;
-}
 
 // 8-bit formats get 8-bit pixels (OIIO rounds and clamps); everything else keeps float.
 OIIO::TypeDesc storage_type_for(const std::string& path) {

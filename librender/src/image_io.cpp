@@ -2,6 +2,7 @@
 #include <kdray/atomic_file.h>
 #include <kdray/error.h>
 #include <kdray/image_io.h>
+#include <kdray/util.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -21,23 +22,7 @@ constexpr const char* kSumPrefix = "kdray.sum.";
 // OpenEXR stores channels sorted by name; films keep radiance first, then the AOVs.
 const char* const kChannelOrder[] = {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z"};
 
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
-
-std::string hex64(uint64_t value) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
-  return text;
-}
-
-uint8_t srgb_byte(float linear) {
-  float c = std::clamp(std::isfinite(linear) ? linear : 0.0f, 0.0f, 1.0f);
-  float encoded = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-  return static_cast<uint8_t>(std::lround(encoded * 255.0f));
-}
+uint8_t srgb_byte(float linear) { return static_cast<uint8_t>(std::lround(linear_to_srgb(linear) * 255.0f)); }
 
 // Writes through a temporary sibling that keeps the extension, so OIIO picks the format.
 void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, const void* pixels) {
@@ -76,9 +61,9 @@ void write_exr(const std::string& path, const Film& film) {
   spec.attribute("kdray:max_bounces", film.max_bounces);
   spec.attribute("kdray:sampler", sampler_name(film.sampler));
   spec.attribute("kdray:seconds", float(film.render_seconds));
-  spec.attribute("kdray:scene_hash", hex64(film.scene_hash));
-  spec.attribute("kdray:tree_hash", hex64(film.tree_hash));
-  spec.attribute("kdray:settings_hash", hex64(film.settings_hash));
+  spec.attribute("kdray:scene_hash", hash_hex(film.scene_hash));
+  spec.attribute("kdray:tree_hash", hash_hex(film.tree_hash));
+  spec.attribute("kdray:settings_hash", hash_hex(film.settings_hash));
   spec.attribute("kdray:fixed_bits", kFilmFixedBits);
 
   std::vector<float> means = film.means();
@@ -203,12 +188,12 @@ std::optional<std::pair<uint32_t, uint32_t>> read_image_size(const std::string& 
 }
 
 bool is_supported_image_path(const std::string& path) {
-  std::string ext = lower_extension(path);
+  std::string ext = lowercase_extension(path);
   return ext == ".exr" || ext == ".png" || ext == ".jpg" || ext == ".jpeg";
 }
 
 void write_film_image(const std::string& path, const Film& film) {
-  std::string ext = lower_extension(path);
+  std::string ext = lowercase_extension(path);
   if (ext == ".exr") return write_exr(path, film);
   if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") return write_ldr(path, film);
   throw Error(path, "unsupported output format '" + ext + "' (use .exr, .png or .jpg)");

@@ -6,6 +6,7 @@
 #include <kdray/atomic_file.h>
 #include <kdray/embedded_kernels.h>
 #include <kdray/error.h>
+#include <kdray/util.h>
 
 #include <xxhash.h>
 
@@ -61,12 +62,6 @@ void expand_into(const std::string& name, std::set<std::string>& included, std::
     }
     out << line << '\n';
   }
-}
-
-std::string hex64(uint64_t value) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
-  return text;
 }
 
 std::string build_log(cl_program program, cl_device_id device) {
@@ -127,7 +122,7 @@ ProgramBuild Runtime::program(const std::string& entry_file, const std::string& 
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   std::string source = expand_kernel_source(entry_file);
   std::string key_text = source + '\0' + options + '\0' + info_.platform + '\0' + info_.name + '\0' + info_.driver_version;
-  std::string key = hex64(XXH3_64bits(key_text.data(), key_text.size()));
+  std::string key = hash_hex(XXH3_64bits(key_text.data(), key_text.size()));
 
   std::lock_guard<std::mutex> lock(mutex_);
   if (auto found = programs_.find(key); found != programs_.end()) return {found->second.get(), elapsed(), "memory"};

@@ -228,10 +228,4 @@ std::string file_magic(const std::string& path) {
   return std::string(magic, 8);
 }
 
-std::string hash_hex(uint64_t hash) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
-  return text;
-}
-
 }  // namespace kdray

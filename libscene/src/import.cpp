@@ -3,6 +3,7 @@
 #include <kdray/import.h>
 
 #include <kdray/error.h>
+#include <kdray/util.h>
 
 #include "importers.h"
 
@@ -18,9 +19,7 @@ namespace kdray {
 namespace {
 
 bool has_obj_extension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  return extension == ".obj";
+  return lowercase_extension(path) == ".obj";
 }
 
 void check_readable(const std::string& path) {

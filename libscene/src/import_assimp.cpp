@@ -8,6 +8,7 @@
 #include "polygon.h"
 
 #include <kdray/error.h>
+#include <kdray/util.h>
 
 #include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
@@ -27,8 +28,7 @@ namespace {
 // what makes the others (STL, 3DS, FBX, ...) indexed, but on an indexed 1M-triangle PLY it
 // costs three quarters of the conversion time for nothing.
 bool is_indexed_format(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string extension = lowercase_extension(path);
   return extension == ".ply" || extension == ".off" || extension == ".gltf" || extension == ".glb";
 }
 

@@ -1,5 +1,7 @@
 #include "texture_codec.h"
 
+#include <kdray/util.h>
+
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
@@ -16,11 +18,6 @@ namespace {
 
 // Larger images are refused rather than allocated (256 MiB of RGBA).
 constexpr uint64_t kMaxTexturePixels = uint64_t(1) << 26;
-
-float linear_to_srgb(float value) {
-  value = std::clamp(value, 0.0f, 1.0f);
-  return value <= 0.0031308f ? 12.92f * value : 1.055f * std::pow(value, 1.0f / 2.4f) - 0.055f;
-}
 
 uint8_t to_byte(float value) { return static_cast<uint8_t>(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f)); }
 

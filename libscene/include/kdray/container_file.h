@@ -4,6 +4,8 @@
 // checksum before the caller interprets a single byte.
 #pragma once
 
+#include <kdray/util.h>
+
 #include <kdray/format.h>
 
 #include <cstddef>
@@ -58,8 +60,5 @@ ContainerContents peek_container(const std::string& path, const char (&magic)[8]
 
 // 8-byte magic of the file at `path`, or an empty string if it cannot be read.
 std::string file_magic(const std::string& path);
-
-// Formats a 64-bit hash the way every tool prints it: 16 lowercase hex digits.
-std::string hash_hex(uint64_t hash);
 
 }  // namespace kdray

@@ -5,7 +5,9 @@
 #include <dlfcn.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <mutex>
+#include <system_error>
 
 namespace kdray {
 namespace {
@@ -15,14 +17,32 @@ struct LoadedCodec {
   std::string problem;  // why it could not be loaded
 };
 
-// Loaded once and kept for the life of the process. KDRAY_TEXTURE_CODEC overrides the
-// build-tree path compiled in by CMake.
+constexpr const char* kModuleName = "kdray_texture_codec.so";
+
+// The module lives in lib/kdray/ beside the folder of the executables: one level up when
+// installed (PREFIX/bin/kdconvert, PREFIX/lib/kdray/), two in the build tree
+// (build/tools/kdconvert/kdconvert, build/lib/kdray/), so a relocated or installed copy works.
+// KDRAY_TEXTURE_CODEC names another module file.
+std::string module_path() {
+  if (const char* override_path = std::getenv("KDRAY_TEXTURE_CODEC")) return override_path;
+  std::error_code error;
+  const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    for (const char* up : {"..", "../.."}) {
+      const std::filesystem::path candidate = executable.parent_path() / up / "lib" / "kdray" / kModuleName;
+      if (std::filesystem::exists(candidate, error)) return candidate.lexically_normal().string();
+    }
+  }
+  return kModuleName;  // leaves the search to dlopen (LD_LIBRARY_PATH), whose error names the file
+}
+
+// Loaded once and kept for the life of the process.
 const LoadedCodec& loaded_codec() {
   static LoadedCodec loaded;
   static std::once_flag once;
   std::call_once(once, [] {
-    const char* override_path = std::getenv("KDRAY_TEXTURE_CODEC");
-    const char* path = override_path != nullptr ? override_path : KDRAY_TEXTURE_CODEC_PATH;
+    const std::string module_file = module_path();
+    const char* path = module_file.c_str();
     void* module = ::dlopen(path, RTLD_NOW | RTLD_LOCAL);
     if (module == nullptr) {
       loaded.problem = std::string("texture decoding is unavailable: ") + ::dlerror();

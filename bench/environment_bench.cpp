@@ -1,4 +1,4 @@
-// Environment map preparation times for bench/environment.sh (not a test): reading the image,
+// Environment map preparation times for bench/lights.sh: reading the image,
 // building the sampling table, the mean luminance, each the median of several runs after one
 // warm-up (which also pays OpenImageIO's one-off start-up). Wall and process CPU seconds (all
 // threads): on a shared machine the CPU time is the steadier figure.

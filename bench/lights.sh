@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Light benchmarks (issue 11), medians of 5:
+# Light benchmarks, medians of 5:
 #  1. environment map preparation: reading a 4096x2048 map (float EXR, half DWAB EXR, Radiance
 #     HDR, resized from a corpus map) and building its sampling table (environment_bench);
 #  2. the sample Cornell box (emissive triangles only) rendered by a baseline kdrender and this
@@ -28,7 +28,7 @@ oiiotool "$CORPUS/hdri/courtyard.exr" --resize 4096x2048 -d float --compression 
 oiiotool "$CORPUS/hdri/courtyard.exr" --resize 4096x2048 -d half --compression dwab -o "$WORK/map-half.exr"
 oiiotool "$CORPUS/hdri/courtyard.exr" --resize 4096x2048 -o "$WORK/map.hdr"
 for map in map-float.exr map-half.exr map.hdr; do
-  echo "$map ($(du -h "$WORK/$map" | cut -f1)): $("$BUILD/tests/render/environment_bench" "$WORK/$map" 5)"
+  echo "$map ($(du -h "$WORK/$map" | cut -f1)): $("$BUILD/bench/environment_bench" "$WORK/$map" 5)"
 done
 
 echo "== 2. Cornell box 256x256, 64 spp, 8 bounces: render_seconds, interleaved"

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# Renderer benchmarks (issue 4), medians of 3:
+# Renderer benchmarks, medians of 3:
 #  1. the sample Cornell box at 256x256, 8 max bounces, 16/64/256 spp (whole kdrender command
 #     and its render_seconds), next to Blender Cycles 3.4's 1.18 s / 4.44 s / 19.2 s;
 #  2. megakernel against wavefront at 16 spp;
 #  3. cold and warm OpenCL program builds;
 #  4. traversal-kernel Mrays/s for camera and random rays on the k-d tree benchmark meshes.
-# usage: bench/render.sh [BUILD_DIR]   (a Release build with tests, for render_trace_bench)
+# usage: bench/render.sh [BUILD_DIR]   (a Release build; render_trace_bench is in BUILD_DIR/bench)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=$(realpath "${1:-build}")
@@ -15,7 +15,7 @@ trap 'rm -rf "$WORK"' EXIT
 KDCONVERT=$BUILD/tools/kdconvert/kdconvert
 KDBUILD=$BUILD/tools/kdbuild/kdbuild
 KDRENDER=$BUILD/tools/kdrender/kdrender
-TRACE_BENCH=$BUILD/tests/render/render_trace_bench
+TRACE_BENCH=$BUILD/bench/render_trace_bench
 VIEW="--cam-pos 278,273,-800 --cam-target 278,273,0 --cam-up 0,1,0 --fov 39.3077"
 export KDRAY_CACHE_DIR=$WORK/kdray-cache POCL_CACHE_DIR=$WORK/pocl-cache
 

@@ -1,7 +1,7 @@
 // render_trace_bench SCENE.kdscene SCENE.kdtree [RAYS]: OpenCL traversal-kernel Mrays/s for
 // camera rays (a square image of about RAYS pixels) and RAYS random rays (libkdtree's ray
 // sets), median of 3 kernel runs each after one warm-up; one JSON line on stdout.
-// Used by bench/render.sh; not a test.
+// Used by bench/render.sh.
 #include <kdray/kdtree.h>
 #include <kdray/ray_sets.h>
 #include <kdray/scene_file.h>

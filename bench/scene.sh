@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Scene benchmarks (issue 2): conversion time of two corpus meshes, and the time to load the
+# Scene benchmarks: conversion time of two corpus meshes, and the time to load the
 # resulting .kdscene against a plain read of the same bytes. Medians of N runs (default 5).
 # Usage: bench/scene.sh [BUILD_DIR] [N]      (BUILD_DIR defaults to ./build)
 set -euo pipefail
@@ -9,7 +9,7 @@ runs="${2:-5}"
 corpus="${KDRAY_CORPUS:-../shared/corpus}"
 kdconvert="$build/tools/kdconvert/kdconvert"
 kdinfo="$build/tools/kdinfo/kdinfo"
-load_bench="$build/tests/scene/scene_load_bench"
+load_bench="$build/bench/scene_load_bench"
 cmake --build "$build" --target kdconvert kdinfo scene_load_bench >/dev/null
 python=/usr/bin/python3
 work="$(mktemp -d)"

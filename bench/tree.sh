@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# k-d tree benchmarks (issue 3): build time, peak memory and SAH cost of kdbuild, and CPU
+# k-d tree benchmarks: build time, peak memory and SAH cost of kdbuild, and CPU
 # kdtrace rates for camera rays and random rays (origins uniform on the bounding sphere, aimed
 # at uniform points in the bounding box), on the corpus meshes. Prints medians of $RUNS runs
 # and every command it ran.
@@ -33,14 +33,14 @@ run_json() {
   "$@" | /usr/bin/python3 -c 'import json,sys; print(json.dumps(json.load(sys.stdin)))' >> "$out"
 }
 
-# Builder comparison (issue 15), instead of the table below when BASELINE=path/to/an/older/kdbuild
+# Builder comparison, instead of the table below when BASELINE=path/to/an/older/kdbuild
 # is set: both builders
 # interleaved, best of $BEST runs on 2 threads, whether their trees are byte-identical, the
 # scaling from bunny_sub2 to dragons_4x4 against n log n, and per-ray work (kdtree_counters:
 # steps, leaves, triangle tests) with kdtrace rates on meshes the builder was not tuned on.
 if [[ -n "${BASELINE:-}" ]]; then
 best="${BEST:-3}"
-counters="$build/tests/kdtree/kdtree_counters"
+counters="$build/bench/kdtree_counters"
 echo
 echo "# builder comparison: $BASELINE (before) vs $build/tools/kdbuild/kdbuild (after), best of $best, --threads 2"
 echo "# load average: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -1,5 +1,5 @@
 // kdcompare as a user runs it: exit codes, thresholds, JSON, heat map, and the failures.
-#include <run_command.h>
+#include <subprocess.h>
 #include "synthetic_images.h"
 #include "test_corpus.h"
 
@@ -46,8 +46,8 @@ class KdCompareCli : public ::testing::Test {
 
 TEST_F(KdCompareCli, IdenticalImagesExitZeroWithInfinitePsnrAsNull) {
   const ToolRun run = kdcompare("test.exr", "test.exr", "--json --threshold psnr=100 --threshold rmse=0");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  const auto document = nlohmann::json::parse(run.output);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  const auto document = nlohmann::json::parse(run.out);
   EXPECT_EQ(document["rmse"], 0.0);
   EXPECT_TRUE(document["psnr"].is_null());
   EXPECT_TRUE(document["passed"].get<bool>());
@@ -55,8 +55,8 @@ TEST_F(KdCompareCli, IdenticalImagesExitZeroWithInfinitePsnrAsNull) {
 
 TEST_F(KdCompareCli, JsonNamesTheOverallFigures) {
   const ToolRun run = kdcompare("test.exr", "reference.exr", "--json");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  const auto document = nlohmann::json::parse(run.output);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  const auto document = nlohmann::json::parse(run.out);
   for (const char* name : {"rmse", "relmse", "mae", "psnr", "max_abs", "mean_test", "mean_reference",
                            "nonfinite_test", "nonfinite_reference"}) {
     EXPECT_TRUE(document.contains(name)) << name;
@@ -107,7 +107,7 @@ TEST_F(KdCompareCli, BadArgumentsExitTwo) {
 
 TEST_F(KdCompareCli, HeatmapIsWrittenAsAPng) {
   const ToolRun run = kdcompare("test.exr", "reference.exr", "--heatmap " + shell_quoted(path("map.png").string()));
-  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_EQ(run.exit_code, 0) << run.out;
   auto input = OIIO::ImageInput::open(path("map.png").string());
   ASSERT_TRUE(input);
   EXPECT_EQ(input->spec().width, 4);
@@ -120,7 +120,7 @@ TEST_F(KdCompareCli, HeatmapIsWrittenAsAPng) {
 TEST_F(KdCompareCli, HelpDocumentsExitCodesAndPsnrPeak) {
   const ToolRun run = run_command(shell_quoted(kdray::test::tool_path("kdcompare")) + " --help");
   ASSERT_EQ(run.exit_code, 0);
-  EXPECT_NE(run.output.find("Exit status"), std::string::npos);
-  EXPECT_NE(run.output.find("  3  compared, and a metric is worse"), std::string::npos);
-  EXPECT_NE(run.output.find("peak"), std::string::npos);
+  EXPECT_NE(run.out.find("Exit status"), std::string::npos);
+  EXPECT_NE(run.out.find("  3  compared, and a metric is worse"), std::string::npos);
+  EXPECT_NE(run.out.find("peak"), std::string::npos);
 }

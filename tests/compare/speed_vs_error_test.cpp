@@ -1,6 +1,6 @@
 // scripts/speed_vs_error.py end to end on a tiny Cornell box: the CSV's rows and header, the
 // exactness of reusing samples, and the plot.
-#include <run_command.h>
+#include <subprocess.h>
 #include "test_corpus.h"
 
 #include <gtest/gtest.h>
@@ -87,7 +87,7 @@ TEST_F(SpeedVsError, WritesADoublingSeriesAgainstItsOwnReference) {
   const std::string csv_path = (directory_ / "report.csv").string();
   const std::string final_image = (directory_ / "final.exr").string();
   const ToolRun run = report(csv_path, "--reference-spp 16 --keep-image " + shell_quoted(final_image));
-  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_EQ(run.exit_code, 0) << run.out;
 
   const Csv csv = read_csv(csv_path);
   bool reference_described = false;
@@ -124,14 +124,14 @@ TEST_F(SpeedVsError, NamesAGivenReferenceAndPlots) {
             0);
   const std::string csv_path = (directory_ / "given.csv").string();
   const ToolRun run = report(csv_path, "--reference " + shell_quoted(reference));
-  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_EQ(run.exit_code, 0) << run.out;
   const Csv csv = read_csv(csv_path);
   ASSERT_FALSE(csv.comments.empty());
   EXPECT_NE(csv.comments.back().find("reference: given"), std::string::npos) << csv.comments.back();
 
   const std::string plot = (directory_ / "plot.png").string();
   const ToolRun plotted = run_command(kScript + " plot " + shell_quoted(csv_path) + " -o " + shell_quoted(plot));
-  ASSERT_EQ(plotted.exit_code, 0) << plotted.output;
+  ASSERT_EQ(plotted.exit_code, 0) << plotted.out;
   EXPECT_GT(fs::file_size(plot), 1000u);
 }
 
@@ -139,6 +139,6 @@ TEST_F(SpeedVsError, RefusesAMaxSppThatIsNotAPowerOfTwo) {
   const ToolRun run = run_command(kScript + " run " + shell_quoted(scene_) + " " + shell_quoted(tree_) + " --csv " +
                                   shell_quoted((directory_ / "x.csv").string()) + " --max-spp 3 2>&1");
   EXPECT_NE(run.exit_code, 0);
-  EXPECT_NE(run.output.find("power of two"), std::string::npos) << run.output;
+  EXPECT_NE(run.out.find("power of two"), std::string::npos) << run.out;
   EXPECT_FALSE(fs::exists(directory_ / "x.csv"));
 }

@@ -9,23 +9,19 @@
 #include <kdray/traverse.h>
 
 #include <nlohmann/json.hpp>
+#include <subprocess.h>
 #include <test_corpus.h>
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <sys/wait.h>
 
 namespace kdray {
 namespace {
 
-struct ToolRun {
-  int exit_code;
-  std::string out, err;
-};
+using test::ToolRun;
 
 class KdCli : public ::testing::Test {
  protected:
@@ -42,12 +38,9 @@ class KdCli : public ::testing::Test {
     std::ifstream in(file);
     return std::string(std::istreambuf_iterator<char>(in), {});
   }
-  ToolRun run(const std::string& tool, const std::string& arguments) const {
-    const std::string command = tool_path_of(tool) + " " + arguments + " >" + path("out.txt") + " 2>" + path("err.txt");
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(path("out.txt")), slurp(path("err.txt"))};
+  static ToolRun run(const std::string& tool, const std::string& arguments) {
+    return test::run_command(test::shell_quoted(test::tool_path(tool)) + " " + arguments);
   }
-  static std::string tool_path_of(const std::string& tool) { return test::tool_path(tool); }
 
   std::filesystem::path dir_;
   Scene scene_;

@@ -1,7 +1,7 @@
 // samples/Makefile as a pipeline, run on a copy of samples/ with two small scenes (the Cornell box
 // and a one-triangle OBJ) rendered at a few pixels: a second make does nothing, touching one asset
 // redoes only its chain, touching a material redoes that scene's image.
-#include <run_command.h>
+#include <subprocess.h>
 #include <test_corpus.h>
 
 #include <gtest/gtest.h>
@@ -55,14 +55,14 @@ class SamplesMake : public ::testing::Test {
 
 TEST_F(SamplesMake, ParallelMakeBuildsEveryStageAndASecondMakeDoesNothing) {
   const test::ToolRun first = make("-j2 all");
-  ASSERT_EQ(first.exit_code, 0) << first.output;
+  ASSERT_EQ(first.exit_code, 0) << first.out;
   for (const auto* chain : {&kCornellChain, &kTriangleChain})
     for (const std::string& output : *chain) EXPECT_TRUE(fs::is_regular_file(out() / output)) << output;
 
   EXPECT_EQ(make("-q all").exit_code, 0) << "make -q says something is out of date";
   const test::ToolRun second = make("all");
-  EXPECT_EQ(second.exit_code, 0) << second.output;
-  EXPECT_NE(second.output.find("Nothing to be done"), std::string::npos) << second.output;
+  EXPECT_EQ(second.exit_code, 0) << second.out;
+  EXPECT_NE(second.out.find("Nothing to be done"), std::string::npos) << second.out;
 }
 
 TEST_F(SamplesMake, TouchingOneAssetRedoesOnlyItsChain) {
@@ -73,7 +73,7 @@ TEST_F(SamplesMake, TouchingOneAssetRedoesOnlyItsChain) {
   touch("tri.obj");
   EXPECT_NE(make("-q all").exit_code, 0);
   const test::ToolRun again = make("-j2 all");
-  ASSERT_EQ(again.exit_code, 0) << again.output;
+  ASSERT_EQ(again.exit_code, 0) << again.out;
   for (const std::string& output : kTriangleChain) EXPECT_TRUE(rewritten(output)) << output;
   for (const std::string& output : kCornellChain) EXPECT_FALSE(rewritten(output)) << output;
   EXPECT_EQ(make("-q all").exit_code, 0);
@@ -85,7 +85,7 @@ TEST_F(SamplesMake, TouchingAMaterialRedoesThatScenesImage) {
 
   touch("cornell-box.mtl");
   const test::ToolRun again = make("-j2 all");
-  ASSERT_EQ(again.exit_code, 0) << again.output;
+  ASSERT_EQ(again.exit_code, 0) << again.out;
   EXPECT_TRUE(rewritten("cornell-box.kdscene"));
   EXPECT_TRUE(rewritten("cornell-box.png"));
   for (const std::string& output : kTriangleChain) EXPECT_FALSE(rewritten(output)) << output;
@@ -94,7 +94,7 @@ TEST_F(SamplesMake, TouchingAMaterialRedoesThatScenesImage) {
 TEST_F(SamplesMake, AMissingAssetFailsAndLeavesNoOutput) {
   const test::ToolRun run = make("'IMAGES=nothing-here' all");
   EXPECT_NE(run.exit_code, 0);
-  EXPECT_NE(run.output.find("nothing-here.obj: no such asset"), std::string::npos) << run.output;
+  EXPECT_NE(run.out.find("nothing-here.obj: no such asset"), std::string::npos) << run.out;
   EXPECT_FALSE(fs::exists(out() / "nothing-here.kdscene"));
 }
 

@@ -4,7 +4,7 @@
 // --version; exit 1 for a failure (a missing, unreadable or damaged input included), 2 for a
 // malformed command line, and one line on stderr, "tool: error: <file>: <what>", naming the file
 // (or the option) at fault, whether or not --quiet or --json is given.
-#include "subprocess.h"
+#include <subprocess.h>
 #include "test_corpus.h"
 
 #include <gtest/gtest.h>

@@ -5,7 +5,7 @@
 #include <kdray/atomic_file.h>
 #include <kdray/image_io.h>
 
-#include "subprocess.h"
+#include <subprocess.h>
 #include "test_corpus.h"
 
 #include <gtest/gtest.h>

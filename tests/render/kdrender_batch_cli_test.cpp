@@ -71,8 +71,8 @@ TEST_F(KdrenderBatch, FramesEqualSingleCommandsBitForBit) {
   std::string text = "# frames of the Cornell box\n\n";
   for (const Case& c : cases) text += "  -o " + path(c.output) + c.line + "   # a comment\n";
   test::ToolRun run = batch("equal.jobs", text, std::string(kDefaults) + " --json");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  nlohmann::json report = nlohmann::json::parse(run.output);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  nlohmann::json report = nlohmann::json::parse(run.out);
   ASSERT_EQ(report["frames"].size(), cases.size());
   EXPECT_EQ(report["rendered"], cases.size());
   // The second frame uses the first one's kernel (same features); the fifth needs another.
@@ -83,7 +83,7 @@ TEST_F(KdrenderBatch, FramesEqualSingleCommandsBitForBit) {
   for (const Case& c : cases) {
     const std::string alone = path("single-" + c.output);
     test::ToolRun one = test::run_command(kdrender("-o " + alone + view + c.single + " --quiet 2>&1"));
-    ASSERT_EQ(one.exit_code, 0) << c.single << ": " << one.output;
+    ASSERT_EQ(one.exit_code, 0) << c.single << ": " << one.out;
     if (c.output.size() > 4 && c.output.substr(c.output.size() - 4) == ".png") {
       EXPECT_EQ(read_bytes(path(c.output)), read_bytes(alone)) << c.line;
       continue;
@@ -109,8 +109,8 @@ TEST_F(KdrenderBatch, ResumeSkipsOnlyCompleteFrames) {
   fs::copy_file(path("other.exr"), path("r3.exr"), fs::copy_options::overwrite_existing);
   const std::string r0_before = read_bytes(path("r0.exr"));
   test::ToolRun run = batch("resume.jobs", text, std::string(kDefaults) + " --resume --json");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  nlohmann::json report = nlohmann::json::parse(run.output);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  nlohmann::json report = nlohmann::json::parse(run.out);
   EXPECT_EQ(report["frames"][0]["status"], "skipped");
   EXPECT_EQ(report["frames"][1]["status"], "rendered");
   EXPECT_EQ(report["frames"][2]["status"], "skipped");
@@ -125,10 +125,10 @@ TEST_F(KdrenderBatch, FailedFramesAreListedAndTheRestRender) {
                            " --cam-pos 1,2,3 --cam-target 1,2,3\n-o " + path("ok1.exr") + "\n";
   std::ofstream(path("fail.jobs")) << text;
   test::ToolRun run = test::run_command(kdrender("--jobs " + path("fail.jobs") + " " + kDefaults + " 2>&1"));
-  EXPECT_EQ(run.exit_code, 1) << run.output;
-  EXPECT_NE(run.output.find("2 of 4 frames failed"), std::string::npos) << run.output;
-  EXPECT_NE(run.output.find(path("fail.jobs") + ":2 " + path("no-such-dir/x.exr")), std::string::npos) << run.output;
-  EXPECT_NE(run.output.find(path("fail.jobs") + ":3 " + path("flat.exr")), std::string::npos) << run.output;
+  EXPECT_EQ(run.exit_code, 1) << run.out;
+  EXPECT_NE(run.out.find("2 of 4 frames failed"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find(path("fail.jobs") + ":2 " + path("no-such-dir/x.exr")), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find(path("fail.jobs") + ":3 " + path("flat.exr")), std::string::npos) << run.out;
   EXPECT_TRUE(fs::exists(path("ok0.exr")));
   EXPECT_TRUE(fs::exists(path("ok1.exr")));
   EXPECT_FALSE(fs::exists(path("flat.exr")));
@@ -144,9 +144,9 @@ TEST_F(KdrenderBatch, BadLinesAreUsageErrorsBeforeAnyFrameRenders) {
     const std::string first = "-o " + path("never.exr");
     std::ofstream(path("bad.jobs")) << first << "\n" << line << "\n";
     test::ToolRun run = test::run_command(kdrender("--jobs " + path("bad.jobs") + " " + kDefaults + " 2>&1"));
-    EXPECT_EQ(run.exit_code, 2) << line << ": " << run.output;
-    EXPECT_NE(run.output.find("kdrender: error: " + path("bad.jobs") + where), std::string::npos)
-        << line << ": " << run.output;
+    EXPECT_EQ(run.exit_code, 2) << line << ": " << run.out;
+    EXPECT_NE(run.out.find("kdrender: error: " + path("bad.jobs") + where), std::string::npos)
+        << line << ": " << run.out;
     EXPECT_FALSE(fs::exists(path("never.exr"))) << line;
   }
   // Two lines writing one file; a file with no frame; a missing file (exit 1, named).

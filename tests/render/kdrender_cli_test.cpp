@@ -47,10 +47,10 @@ std::string KdrenderCli::scene_, KdrenderCli::tree_;
 
 TEST_F(KdrenderCli, RendersPngAndReportsJsonWithAWarmSecondBuild) {
   test::ToolRun first = kdrender(cornell(path("a.png"), "--spp 2 --json"));
-  ASSERT_EQ(first.exit_code, 0) << first.output;
+  ASSERT_EQ(first.exit_code, 0) << first.out;
   test::ToolRun second = kdrender(cornell(path("b.png"), "--spp 2 --json"));
-  ASSERT_EQ(second.exit_code, 0) << second.output;
-  nlohmann::json report = nlohmann::json::parse(second.output);
+  ASSERT_EQ(second.exit_code, 0) << second.out;
+  nlohmann::json report = nlohmann::json::parse(second.out);
   EXPECT_EQ(report["build_source"], "disk cache");
   EXPECT_EQ(report["spp"], 2);
   EXPECT_GT(report["rays_per_second"].get<double>(), 0.0);
@@ -67,14 +67,14 @@ TEST_F(KdrenderCli, MergedRangesEqualOneRender) {
   test::ToolRun merge =
       kdrender("--merge " + test::shell_quoted(path("high.exr")) + " " + test::shell_quoted(path("low.exr")) + " -o " +
                test::shell_quoted(path("merged.exr")) + " --quiet");
-  ASSERT_EQ(merge.exit_code, 0) << merge.output;
+  ASSERT_EQ(merge.exit_code, 0) << merge.out;
   Film whole = read_film_exr(path("whole.exr")), merged = read_film_exr(path("merged.exr"));
   EXPECT_EQ(merged.sums, whole.sums);
   EXPECT_EQ(merged.sample_count, 4u);
   test::ToolRun gap = kdrender("--merge " + test::shell_quoted(path("high.exr")) + " " +
                                      test::shell_quoted(path("high.exr")) + " -o " + test::shell_quoted(path("gap.exr")));
   EXPECT_EQ(gap.exit_code, 1);
-  EXPECT_NE(gap.output.find("overlap"), std::string::npos) << gap.output;
+  EXPECT_NE(gap.out.find("overlap"), std::string::npos) << gap.out;
   EXPECT_FALSE(fs::exists(path("gap.exr")));
 }
 
@@ -86,8 +86,8 @@ TEST_F(KdrenderCli, RefusesAStaleTree) {
   test::ToolRun run = kdrender(test::shell_quoted(scene_) + " " + test::shell_quoted(path("other.kdtree")) + " -o " +
                                      test::shell_quoted(path("stale.png")));
   EXPECT_EQ(run.exit_code, 1);
-  EXPECT_NE(run.output.find("kdrender: error:"), std::string::npos) << run.output;
-  EXPECT_NE(run.output.find("stale"), std::string::npos) << run.output;
+  EXPECT_NE(run.out.find("kdrender: error:"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("stale"), std::string::npos) << run.out;
   EXPECT_FALSE(fs::exists(path("stale.png")));
 }
 
@@ -102,7 +102,7 @@ TEST_F(KdrenderCli, RefusesADamagedScene) {
   test::ToolRun run = kdrender(test::shell_quoted(damaged) + " " + test::shell_quoted(tree_) + " -o " +
                                      test::shell_quoted(path("damaged.png")));
   EXPECT_EQ(run.exit_code, 1);
-  EXPECT_NE(run.output.find(damaged), std::string::npos) << run.output;
+  EXPECT_NE(run.out.find(damaged), std::string::npos) << run.out;
   EXPECT_FALSE(fs::exists(path("damaged.png")));
 }
 
@@ -111,8 +111,8 @@ TEST_F(KdrenderCli, BadArgumentsExitWithUsageStatus) {
                        "--frobnicate", "--cam-pos 0,0,0"};
   for (const char* arguments : bad) {
     test::ToolRun run = kdrender(cornell(path("bad.exr"), arguments));
-    EXPECT_EQ(run.exit_code, 2) << arguments << ": " << run.output;
-    EXPECT_NE(run.output.find("kdrender: error:"), std::string::npos) << run.output;
+    EXPECT_EQ(run.exit_code, 2) << arguments << ": " << run.out;
+    EXPECT_NE(run.out.find("kdrender: error:"), std::string::npos) << run.out;
   }
   EXPECT_EQ(kdrender(test::shell_quoted(scene_) + " " + test::shell_quoted(tree_)).exit_code, 2);  // no -o
   EXPECT_EQ(kdrender(cornell(path("bad.tiff"), "")).exit_code, 2);
@@ -121,8 +121,8 @@ TEST_F(KdrenderCli, BadArgumentsExitWithUsageStatus) {
 
 TEST_F(KdrenderCli, ListsDevices) {
   test::ToolRun run = kdrender("--device list");
-  EXPECT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_NE(run.output.find("[default]"), std::string::npos) << run.output;
+  EXPECT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_NE(run.out.find("[default]"), std::string::npos) << run.out;
   EXPECT_EQ(kdrender(cornell(path("nodevice.png"), "--device 99")).exit_code, 1);
   EXPECT_EQ(kdrender(cornell(path("host.png"), "--device host")).exit_code, 2);  // kdrender runs on OpenCL only
 }
@@ -132,7 +132,7 @@ TEST_F(KdrenderCli, WithoutAnOpenClPlatformSaysHowToInstallPocl) {
   test::ToolRun run = test::run_command("OCL_ICD_VENDORS=" + test::shell_quoted((*dir_ / "no-vendors").string()) +
                                               " " + test::shell_quoted(test::tool_path("kdrender")) + " --device list 2>&1");
   EXPECT_EQ(run.exit_code, 1);
-  EXPECT_NE(run.output.find("pocl-opencl-icd"), std::string::npos) << run.output;
+  EXPECT_NE(run.out.find("pocl-opencl-icd"), std::string::npos) << run.out;
 }
 
 }  // namespace

@@ -43,35 +43,35 @@ fs::path* KdrenderLights::dir_ = nullptr;
 
 TEST_F(KdrenderLights, AnUnlitSceneWarnsAndGetsTheDefaultLight) {
   test::ToolRun run = kdrender("");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_NE(run.output.find("kdrender: warning: "), std::string::npos) << run.output;
-  EXPECT_NE(run.output.find("--no-default-light"), std::string::npos) << run.output;
-  const std::string json = run.output.substr(run.output.find('{'));
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_NE(run.out.find("kdrender: warning: "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("--no-default-light"), std::string::npos) << run.out;
+  const std::string json = run.out.substr(run.out.find('{'));
   EXPECT_EQ(nlohmann::json::parse(json)["environment"], "default");
   EXPECT_GT(nlohmann::json::parse(json)["mean_radiance"].get<double>(), 0.5);
 }
 
 TEST_F(KdrenderLights, NoDefaultLightRendersBlackWithoutWarning) {
   test::ToolRun run = kdrender("--no-default-light");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_EQ(run.output.find("warning"), std::string::npos) << run.output;
-  EXPECT_EQ(nlohmann::json::parse(run.output)["mean_radiance"].get<double>(), 0.0);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_EQ(run.out.find("warning"), std::string::npos) << run.out;
+  EXPECT_EQ(nlohmann::json::parse(run.out)["mean_radiance"].get<double>(), 0.0);
 }
 
 TEST_F(KdrenderLights, EnvColorLightsTheSceneWithoutWarning) {
   test::ToolRun run = kdrender("--env-color 0.5,0.5,0.5 --env-strength 2");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_EQ(run.output.find("warning"), std::string::npos) << run.output;
-  nlohmann::json report = nlohmann::json::parse(run.output);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_EQ(run.out.find("warning"), std::string::npos) << run.out;
+  nlohmann::json report = nlohmann::json::parse(run.out);
   EXPECT_EQ(report["environment"], "uniform");
   EXPECT_NE(report["kernel_options"].get<std::string>().find("KD_FEATURE_ENVIRONMENT"), std::string::npos);
 }
 
 TEST_F(KdrenderLights, AMissingMapIsAnErrorNamingIt) {
   test::ToolRun run = kdrender("--env " + test::shell_quoted(path("missing.exr")));
-  EXPECT_EQ(run.exit_code, 1) << run.output;
-  EXPECT_NE(run.output.find("kdrender: error: "), std::string::npos) << run.output;
-  EXPECT_NE(run.output.find("missing.exr"), std::string::npos) << run.output;
+  EXPECT_EQ(run.exit_code, 1) << run.out;
+  EXPECT_NE(run.out.find("kdrender: error: "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("missing.exr"), std::string::npos) << run.out;
 }
 
 TEST_F(KdrenderLights, InconsistentLightOptionsAreUsageErrors) {

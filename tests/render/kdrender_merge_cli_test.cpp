@@ -37,7 +37,7 @@ class KdrenderMerge : public ::testing::Test {
         test::shell_quoted(test::tool_path("kdrender")) + " " + files.first + " " + files.second + " --jobs " +
         path("shards.jobs") + " --spp 2 --width 12 --height 10 --cam-pos 278,273,-800 --cam-target 278,273,0 "
                               "--fov 39.3077 --quiet 2>&1");
-    if (run.exit_code != 0) throw std::runtime_error("kdrender --jobs failed: " + run.output);
+    if (run.exit_code != 0) throw std::runtime_error("kdrender --jobs failed: " + run.out);
   }
   static void TearDownTestSuite() {
     fs::remove_all(*dir_);
@@ -54,9 +54,9 @@ class KdrenderMerge : public ::testing::Test {
   static void expect_refusal(const std::vector<std::string>& inputs, const std::string& file, const std::string& what,
                              const std::string& extra = "") {
     test::ToolRun run = merge(inputs, extra);
-    EXPECT_EQ(run.exit_code, 1) << run.output;
-    EXPECT_NE(run.output.find("kdrender: error: " + path(file) + ": "), std::string::npos) << run.output;
-    EXPECT_NE(run.output.find(what), std::string::npos) << run.output;
+    EXPECT_EQ(run.exit_code, 1) << run.out;
+    EXPECT_NE(run.out.find("kdrender: error: " + path(file) + ": "), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find(what), std::string::npos) << run.out;
     EXPECT_FALSE(fs::exists(path("merged.exr")));
   }
 
@@ -66,7 +66,7 @@ fs::path* KdrenderMerge::dir_ = nullptr;
 
 TEST_F(KdrenderMerge, ShardsInAnyOrderMergeIntoTheWholeRender) {
   test::ToolRun run = merge({"s2.exr", "s0.exr", "s3.exr", "s1.exr"}, "--spp 8 --quiet");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_EQ(run.exit_code, 0) << run.out;
   Film merged = read_film_exr(path("merged.exr")), whole = read_film_exr(path("whole.exr"));
   EXPECT_EQ(merged.sums, whole.sums);
   EXPECT_EQ(merged.sample_count, 8u);

@@ -50,19 +50,19 @@ TEST_F(MultiDevice, TwoDevicesGiveTheSingleDeviceImageAndReportTheirShares) {
   ASSERT_EQ(kdrender("one.exr", "--device 0 --quiet").exit_code, 0);
   for (const char* devices : {"all", "1,0"}) {
     test::ToolRun run = kdrender("split.exr", std::string("--device ") + devices + " --json");
-    ASSERT_EQ(run.exit_code, 0) << run.output;
+    ASSERT_EQ(run.exit_code, 0) << run.out;
     Film one = read_film_exr(path("one.exr")), split = read_film_exr(path("split.exr"));
     EXPECT_EQ(split.sums, one.sums) << devices;
     EXPECT_EQ(split.sample_offset, 3u);
     EXPECT_EQ(split.sample_count, 12u);
 
-    nlohmann::json report = nlohmann::json::parse(run.output);
-    ASSERT_EQ(report["devices"].size(), 2u) << run.output;
+    nlohmann::json report = nlohmann::json::parse(run.out);
+    ASSERT_EQ(report["devices"].size(), 2u) << run.out;
     uint32_t samples = 0;
     double share = 0;
     for (const auto& device : report["devices"]) {
-      EXPECT_GE(device["samples"].get<uint32_t>(), 1u) << run.output;  // every device renders a first pass
-      EXPECT_GT(device["samples_per_second"].get<double>(), 0.0) << run.output;
+      EXPECT_GE(device["samples"].get<uint32_t>(), 1u) << run.out;  // every device renders a first pass
+      EXPECT_GT(device["samples_per_second"].get<double>(), 0.0) << run.out;
       samples += device["samples"].get<uint32_t>();
       share += device["share"].get<double>();
     }
@@ -75,8 +75,8 @@ TEST_F(MultiDevice, TwoDevicesGiveTheSingleDeviceImageAndReportTheirShares) {
 TEST_F(MultiDevice, RefusesUnknownAndRepeatedDevices) {
   for (const char* devices : {"0,0", "0,7", "0,"}) {
     test::ToolRun run = kdrender("bad.exr", std::string("--device ") + devices + " 2>&1");
-    EXPECT_EQ(run.exit_code, 1) << devices << ": " << run.output;
-    EXPECT_NE(run.output.find("kdrender: error: OpenCL device"), std::string::npos) << run.output;
+    EXPECT_EQ(run.exit_code, 1) << devices << ": " << run.out;
+    EXPECT_NE(run.out.find("kdrender: error: OpenCL device"), std::string::npos) << run.out;
   }
   EXPECT_FALSE(fs::exists(path("bad.exr")));
 }

@@ -7,7 +7,7 @@
 #include <kdray/scene.h>
 #include <kdray/scene_file.h>
 
-#include <run_command.h>
+#include <subprocess.h>
 #include <test_corpus.h>
 
 #include <filesystem>
@@ -46,7 +46,7 @@ inline std::pair<std::string, std::string> prepare_cornell_files(const std::file
   if (!std::filesystem::exists(scene)) {
     ToolRun convert = run_command(shell_quoted(tool_path("kdconvert")) + " " + shell_quoted(cornell_obj()) + " " +
                                   shell_quoted(scene) + " 2>&1");
-    if (convert.exit_code != 0) throw std::runtime_error("kdconvert failed: " + convert.output);
+    if (convert.exit_code != 0) throw std::runtime_error("kdconvert failed: " + convert.out);
   }
   if (!std::filesystem::exists(tree)) {
     Scene loaded = read_scene(scene);

@@ -138,14 +138,14 @@ TEST(Samplers, KdrenderTakesTheSamplerAndRecordsItInTheExr) {
   };
   const std::string independent = (dir / "independent.exr").string(), sobol = (dir / "sobol.exr").string();
   test::ToolRun run = kdrender("--sampler independent -q -o " + test::shell_quoted(independent));
-  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_EQ(run.exit_code, 0) << run.out;
   EXPECT_EQ(read_film_exr(independent).sampler, Sampler::Independent);
   run = kdrender("-q -o " + test::shell_quoted(sobol));
-  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_EQ(run.exit_code, 0) << run.out;
   EXPECT_EQ(read_film_exr(sobol).sampler, Sampler::Sobol) << "sobol is the default";
   run = kdrender("--sampler halton -o " + test::shell_quoted((dir / "x.exr").string()));
-  EXPECT_EQ(run.exit_code, 2) << run.output;
-  EXPECT_NE(run.output.find("--sampler"), std::string::npos) << run.output;
+  EXPECT_EQ(run.exit_code, 2) << run.out;
+  EXPECT_NE(run.out.find("--sampler"), std::string::npos) << run.out;
   std::filesystem::remove_all(dir);
 }
 

@@ -2,7 +2,7 @@
 #include <kdray/container_file.h>
 #include <kdray/scene_file.h>
 
-#include "subprocess.h"
+#include <subprocess.h>
 #include "test_corpus.h"
 
 #include <gtest/gtest.h>
@@ -30,11 +30,11 @@ class Cli : public ::testing::Test {
     return obj;
   }
 
-  test::ProcessResult convert(std::vector<std::string> arguments) const {
+  test::ToolRun convert(std::vector<std::string> arguments) const {
     arguments.insert(arguments.begin(), tool_path("kdconvert"));
     return run_process(arguments);
   }
-  test::ProcessResult info(std::vector<std::string> arguments) const {
+  test::ToolRun info(std::vector<std::string> arguments) const {
     arguments.insert(arguments.begin(), tool_path("kdinfo"));
     return run_process(arguments);
   }
@@ -42,7 +42,7 @@ class Cli : public ::testing::Test {
   std::filesystem::path directory_;
 };
 
-void expect_one_error_line(const test::ProcessResult& result, const std::string& starts_with) {
+void expect_one_error_line(const test::ToolRun& result, const std::string& starts_with) {
   EXPECT_EQ(result.err.rfind(starts_with, 0), 0u) << result.err;
   EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
 }

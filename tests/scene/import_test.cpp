@@ -257,7 +257,7 @@ TEST_F(Import, InstancedMeshesAreFlattenedWithTheirTransforms) {
 // Path of a file from Debian's assimp-testmodels; missing fails under CI, skips elsewhere.
 #define KDRAY_ASSIMP_MODEL(var, relative)                                                          \
   do {                                                                                             \
-    var = std::string("/usr/share/assimp/models/") + (relative);                                   \
+    var = std::string(KDRAY_ASSIMP_MODELS_DIR "/") + (relative);                                   \
     if (!std::filesystem::exists(var)) {                                                           \
       if (test::running_in_ci()) FAIL() << "assimp-testmodels missing in CI: " << var;             \
       GTEST_SKIP() << "assimp-testmodels not installed";                                           \

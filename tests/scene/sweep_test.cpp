@@ -3,7 +3,7 @@
 // Debian's assimp-testmodels, one test per folder, each file run through the real kdconvert.
 #include <kdray/scene_file.h>
 
-#include "subprocess.h"
+#include <subprocess.h>
 #include "test_corpus.h"
 
 #include <gtest/gtest.h>
@@ -17,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kAssimpModels = "/usr/share/assimp/models";
+constexpr const char* kAssimpModels = KDRAY_ASSIMP_MODELS_DIR;
 // A conversion that takes longer than this is a hang (the slowest file takes about 1 s).
 constexpr double kTimeoutSeconds = 60;
 

@@ -1,5 +1,7 @@
 #include "generated_scenes.h"
 
+#include <icosphere.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -31,44 +33,8 @@ void append_mesh(Scene& scene, const Scene& extra) {
 }
 
 Scene make_icosphere(int subdivisions, float radius) {
-  const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<std::array<double, 3>> points = {
-      {-1, phi, 0}, {1, phi, 0}, {-1, -phi, 0}, {1, -phi, 0}, {0, -1, phi}, {0, 1, phi},
-      {0, -1, -phi}, {0, 1, -phi}, {phi, 0, -1}, {phi, 0, 1}, {-phi, 0, -1}, {-phi, 0, 1}};
-  std::vector<std::array<uint32_t, 3>> faces = {
-      {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-      {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  auto normalise = [](std::array<double, 3> p) {
-    const double length = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-    return std::array<double, 3>{p[0] / length, p[1] / length, p[2] / length};
-  };
-  for (auto& p : points) p = normalise(p);
-  for (int level = 0; level < subdivisions; ++level) {
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;  // shared, so the mesh stays closed
-    auto midpoint = [&](uint32_t a, uint32_t b) {
-      const auto key = std::minmax(a, b);
-      auto found = midpoints.find(key);
-      if (found != midpoints.end()) return found->second;
-      points.push_back(normalise({(points[a][0] + points[b][0]) / 2, (points[a][1] + points[b][1]) / 2,
-                                  (points[a][2] + points[b][2]) / 2}));
-      return midpoints[key] = uint32_t(points.size() - 1);
-    };
-    std::vector<std::array<uint32_t, 3>> finer;
-    for (const auto& f : faces) {
-      const uint32_t ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
-      finer.push_back({f[0], ab, ca});
-      finer.push_back({f[1], bc, ab});
-      finer.push_back({f[2], ca, bc});
-      finer.push_back({ab, bc, ca});
-    }
-    faces = std::move(finer);
-  }
-  std::vector<Vec3> positions;
-  for (const auto& p : points) positions.push_back({float(p[0] * radius), float(p[1] * radius), float(p[2] * radius)});
-  std::vector<uint32_t> indices;
-  for (const auto& f : faces) indices.insert(indices.end(), f.begin(), f.end());
-  return make_scene(std::move(positions), std::move(indices));
+  IcosphereMesh mesh = icosphere_mesh(subdivisions, {0, 0, 0}, radius);
+  return make_scene(std::move(mesh.positions), std::move(mesh.indices));
 }
 
 Scene make_grid_box(float lo, float hi, int cells) {

@@ -16,8 +16,7 @@ Scene make_scene(std::vector<Vec3> positions, std::vector<uint32_t> indices);
 // Triangles of `extra` appended to `scene` (vertices re-indexed), hash recomputed.
 void append_mesh(Scene& scene, const Scene& extra);
 
-// A closed icosphere: the icosahedron subdivided `subdivisions` times, vertices on the sphere.
-// Shared vertices are shared indices, so the mesh is closed (no cracks by construction).
+// The support library's closed icosphere (icosphere.h) about the origin, as a scene.
 Scene make_icosphere(int subdivisions, float radius);
 
 // A closed axis-aligned box [lo, hi]^3 whose faces are `cells` x `cells` grids of quads (two

@@ -88,5 +88,5 @@ TEST(ShortStack, KdrenderWithAOneEntryStackRendersTheSameImage) {
       kdray::test::shell_quoted(kdray::test::tool_path("kdcompare")) + " " +
       kdray::test::shell_quoted(tools.path("one.exr")) + " " + kdray::test::shell_quoted(tools.path("full.exr")) +
       " --threshold max_abs=0");
-  EXPECT_EQ(same.exit_code, 0) << same.output;
+  EXPECT_EQ(same.exit_code, 0) << same.out;
 }

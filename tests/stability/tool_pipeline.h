@@ -2,7 +2,7 @@
 // subprocesses in a temporary directory, with their --json reports parsed.
 #pragma once
 
-#include <run_command.h>
+#include <subprocess.h>
 #include "test_corpus.h"
 
 #include <nlohmann/json.hpp>
@@ -26,9 +26,9 @@ class ToolPipeline {
   nlohmann::json run_json(const std::string& tool, const std::string& arguments) const {
     const ToolRun run = run_command(shell_quoted(tool_path(tool)) + " " + arguments + " --json");
     if (run.exit_code != 0) {
-      throw std::runtime_error(tool + " " + arguments + " exited " + std::to_string(run.exit_code) + ": " + run.output);
+      throw std::runtime_error(tool + " " + arguments + " exited " + std::to_string(run.exit_code) + ": " + run.out);
     }
-    return nlohmann::json::parse(run.output);
+    return nlohmann::json::parse(run.out);
   }
 
   // kdconvert OBJ -> <stem>.kdscene, kdbuild -> <stem>.kdtree; returns kdconvert's report.

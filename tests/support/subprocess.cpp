@@ -1,4 +1,4 @@
-#include "subprocess.h"
+#include <subprocess.h>
 
 #include "test_corpus.h"
 
@@ -29,7 +29,7 @@ std::string slurp(const std::filesystem::path& path) {
 
 }  // namespace
 
-ProcessResult run_process(const std::vector<std::string>& argv, double timeout_seconds) {
+ToolRun run_process(const std::vector<std::string>& argv, double timeout_seconds) {
   const std::filesystem::path directory = make_temp_dir("process");
   const std::string out_path = (directory / "out").string(), err_path = (directory / "err").string();
   posix_spawn_file_actions_t actions;
@@ -45,7 +45,7 @@ ProcessResult run_process(const std::vector<std::string>& argv, double timeout_s
   posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0) throw std::runtime_error("cannot start " + argv[0]);
 
-  ProcessResult result;
+  ToolRun result;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_seconds);
   int status = 0;
   auto pause = std::chrono::microseconds(200);
@@ -69,6 +69,16 @@ ProcessResult run_process(const std::vector<std::string>& argv, double timeout_s
   result.err = slurp(err_path);
   std::filesystem::remove_all(directory);
   return result;
+}
+
+ToolRun run_command(const std::string& command, double timeout_seconds) {
+  return run_process({"/bin/sh", "-c", command}, timeout_seconds);
+}
+
+std::string shell_quoted(const std::string& text) {
+  std::string result = "'";
+  for (char c : text) result += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return result + "'";
 }
 
 }  // namespace kdray::test

@@ -317,7 +317,8 @@ KdTree finish_tree(const Scene& scene, const BuildSettings& settings, const Box3
   tree.leaf_triangles = std::move(built.leaf_triangles);
   tree.bounds = Bounds{{voxel.min[0], voxel.min[1], voxel.min[2]}, {voxel.max[0], voxel.max[1], voxel.max[2]}};
   tree.settings = settings;
-  tree.scene_hash = scene.content_hash;
+  tree.geometry_hash = compute_geometry_hash(scene);
+  tree.key = tree_key(tree.geometry_hash, settings);
   tree.stats = compute_tree_stats(tree, scene.triangle_count());
   return tree;
 }

@@ -7,7 +7,10 @@
 
 #include <cereal/archives/portable_binary.hpp>
 
+#include <xxhash.h>
+
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -93,6 +96,22 @@ void validate_structure(const KdTree& tree, const std::string& path) {
                             std::to_string(tree.stats.triangles));
 }
 
+// The key over (size, bytes) parts: the geometry hash, the encoded settings (section 3's bytes)
+// and the format version (formats/kdtree.md).
+uint64_t key_of(uint64_t geometry_hash, const std::string& encoded_settings) {
+  std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(), &XXH3_freeState);
+  XXH3_64bits_reset(state.get());
+  auto feed = [&](const void* data, uint64_t size) {
+    XXH3_64bits_update(state.get(), &size, sizeof size);
+    XXH3_64bits_update(state.get(), data, size);
+  };
+  const uint32_t version = format::kTreeVersion;
+  feed(&geometry_hash, sizeof geometry_hash);
+  feed(encoded_settings.data(), encoded_settings.size());
+  feed(&version, sizeof version);
+  return XXH3_64bits_digest(state.get());
+}
+
 }  // namespace
 
 void write_tree(const std::string& path, const KdTree& tree) {
@@ -100,21 +119,28 @@ void write_tree(const std::string& path, const KdTree& tree) {
   const std::string statistics = to_portable_binary(tree.stats);
   const float bounds[6] = {tree.bounds.min.x, tree.bounds.min.y, tree.bounds.min.z,
                            tree.bounds.max.x, tree.bounds.max.y, tree.bounds.max.z};
+  const uint64_t key = key_of(tree.geometry_hash, parameters);
   const std::vector<SectionData> sections = {
       {format::kTreeNodes, tree.nodes.data(), tree.nodes.size() * sizeof(KdNode)},
       {format::kTreeLeafTriangles, tree.leaf_triangles.data(), tree.leaf_triangles.size() * sizeof(uint32_t)},
       {format::kTreeParameters, parameters.data(), parameters.size()},
       {format::kTreeStatistics, statistics.data(), statistics.size()},
       {format::kTreeBounds, bounds, sizeof bounds},
+      {format::kTreeKey, &key, sizeof key},
   };
-  write_container(path, ContainerHeaderInfo{format::kTreeMagic, format::kTreeVersion, 0, tree.scene_hash},
+  write_container(path, ContainerHeaderInfo{format::kTreeMagic, format::kTreeVersion, 0, tree.geometry_hash},
                   sections);
+}
+
+uint64_t tree_key(uint64_t geometry_hash, const BuildSettings& settings) {
+  return key_of(geometry_hash, to_portable_binary(settings));
 }
 
 KdTree read_tree(const std::string& path) {
   KdTree tree;
   std::string parameters, statistics;
   float bounds[6] = {};
+  uint64_t key = 0;
   uint32_t seen = 0;
   auto element_count = [&](uint64_t size, uint64_t element, const char* what) {
     if (size % element != 0) throw Error(path, std::string("damaged ") + what + " section: odd size");
@@ -122,7 +148,7 @@ KdTree read_tree(const std::string& path) {
   };
   const ContainerContents contents =
       read_container(path, format::kTreeMagic, format::kTreeVersion, "kdtree", [&](uint32_t id, uint64_t size) -> void* {
-        if (id >= 1 && id <= 5) {
+        if (id >= format::kTreeNodes && id <= format::kTreeKey) {
           if (seen & (1u << id)) throw Error(path, "damaged file: section " + std::to_string(id) + " twice");
           seen |= 1u << id;
         }
@@ -142,12 +168,25 @@ KdTree read_tree(const std::string& path) {
           case format::kTreeBounds:
             if (size != sizeof bounds) throw Error(path, "damaged bounds section");
             return bounds;
+          case format::kTreeKey:
+            if (size != sizeof key) throw Error(path, "damaged key section");
+            return &key;
           default:
             return nullptr;
         }
       });
-  if (seen != 0x3eu) throw Error(path, "damaged file: a required section is missing");
-  tree.scene_hash = contents.header.content_hash;
+  const uint32_t version = contents.header.version;
+  // Sections 1-5, and the key from version 2 on.
+  const uint32_t required = version >= 2 ? 0x7eu : 0x3eu;
+  if ((seen & required) != required) throw Error(path, "damaged file: a required section is missing");
+  if (version >= 2) {
+    if (key != key_of(contents.header.content_hash, parameters))
+      throw Error(path, "damaged tree: its key " + hash_hex(key) + " does not match its geometry and build settings");
+    tree.geometry_hash = contents.header.content_hash;
+    tree.key = key;
+  } else {
+    tree.v1_scene_hash = contents.header.content_hash;
+  }
   tree.settings = from_portable_binary<BuildSettings>(parameters, path, "parameters");
   tree.stats = from_portable_binary<TreeStats>(statistics, path, "statistics");
   tree.bounds = Bounds{{bounds[0], bounds[1], bounds[2]}, {bounds[3], bounds[4], bounds[5]}};
@@ -157,9 +196,12 @@ KdTree read_tree(const std::string& path) {
 
 void check_tree_matches_scene(const KdTree& tree, const std::string& tree_path, const Scene& scene,
                               const std::string& scene_path) {
-  if (tree.scene_hash != scene.content_hash)
-    throw Error(tree_path, "stale tree: built for scene " + hash_hex(tree.scene_hash) + ", but " + scene_path +
+  if (tree.v1_scene_hash != 0 && tree.v1_scene_hash != scene.content_hash)
+    throw Error(tree_path, "stale tree: built for scene " + hash_hex(tree.v1_scene_hash) + ", but " + scene_path +
                                " has " + hash_hex(scene.content_hash) + ": rebuild with kdbuild");
+  if (tree.v1_scene_hash == 0 && tree.geometry_hash != scene.geometry_hash)
+    throw Error(tree_path, "stale tree: built for geometry " + hash_hex(tree.geometry_hash) + ", but " + scene_path +
+                               " has geometry " + hash_hex(scene.geometry_hash) + ": rebuild with kdbuild");
   if (tree.stats.triangles != scene.triangle_count())
     throw Error(tree_path, "tree is for " + std::to_string(tree.stats.triangles) + " triangles, but " + scene_path +
                                " has " + std::to_string(scene.triangle_count()));

@@ -90,8 +90,35 @@ void AtomicFile::commit() {
   if (::rename(temporary_.c_str(), target_.c_str()) != 0)
     throw Error(target_, std::string("cannot move the finished file into place: ") + std::strerror(errno));
   committed_ = true;
-  // The rename itself survives a power cut only once the folder is flushed too; best effort,
-  // since the data is complete and in place either way.
+  sync_folder();
+}
+
+bool AtomicFile::commit_unless_exists() {
+  fsync_path(temporary_, O_RDONLY, target_);
+  if (::renameat2(AT_FDCWD, temporary_.c_str(), AT_FDCWD, target_.c_str(), RENAME_NOREPLACE) != 0) {
+    if (errno == EEXIST) return discard();
+    if (errno != EINVAL && errno != ENOSYS)
+      throw Error(target_, std::string("cannot move the finished file into place: ") + std::strerror(errno));
+    // A file system without RENAME_NOREPLACE: link() also refuses an existing name.
+    if (::link(temporary_.c_str(), target_.c_str()) != 0) {
+      if (errno == EEXIST) return discard();
+      throw Error(target_, std::string("cannot move the finished file into place: ") + std::strerror(errno));
+    }
+    ::unlink(temporary_.c_str());
+  }
+  committed_ = true;
+  sync_folder();
+  return true;
+}
+
+bool AtomicFile::discard() {
+  ::unlink(temporary_.c_str());
+  return false;
+}
+
+// The rename itself survives a power cut only once the folder is flushed too; best effort,
+// since the data is complete and in place either way.
+void AtomicFile::sync_folder() const {
   const fs::path folder = fs::path(target_).has_parent_path() ? fs::path(target_).parent_path() : fs::path(".");
   const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (fd >= 0) {

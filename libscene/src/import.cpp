@@ -98,6 +98,7 @@ Scene import_scene(const std::string& path, const ImportOptions& options) {
   select_camera(scene, path, options.camera);
   if (scene.cameras.empty()) scene.cameras.push_back(default_camera(scene_bounds(scene)));
   scene.content_hash = compute_content_hash(scene);
+  scene.geometry_hash = compute_geometry_hash(scene);
   return scene;
 }
 

@@ -92,6 +92,20 @@ uint64_t encoding::content_hash(const Scene& scene, const EncodedParts& parts) {
   return XXH3_64bits_digest(state.get());
 }
 
+// The same (size, bytes) framing as the content hash, over the first two of its parts.
+uint64_t compute_geometry_hash(const Scene& scene) {
+  std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(), &XXH3_freeState);
+  XXH3_64bits_reset(state.get());
+  auto feed_array = [&](const auto& array) {
+    const uint64_t size = array.size() * sizeof array[0];
+    XXH3_64bits_update(state.get(), &size, sizeof size);
+    XXH3_64bits_update(state.get(), array.data(), size);
+  };
+  feed_array(scene.positions);
+  feed_array(scene.indices);
+  return XXH3_64bits_digest(state.get());
+}
+
 uint64_t compute_content_hash(const Scene& scene) {
   return encoding::content_hash(scene, encoding::encode_parts(scene));
 }

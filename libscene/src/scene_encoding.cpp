@@ -1,6 +1,7 @@
 #include "scene_encoding.h"
 
 #include <kdray/error.h>
+#include <kdray/format.h>
 
 #include <cereal/archives/portable_binary.hpp>
 
@@ -236,7 +237,7 @@ std::string encode_scene_info(const SceneInfo& info) {
   std::ostringstream stream(std::ios::binary);
   {
     OutputArchive archive(stream);
-    archive(info.content_hash);
+    archive(info.content_hash, info.geometry_hash);
     put(archive, info.import_stats);
   }
   return stream.str();
@@ -253,11 +254,12 @@ std::vector<Texture> decode_textures(const std::string& path, const std::vector<
   return decode_list<Texture>(path, "textures", bytes, kMinTextureBytes, get_texture);
 }
 
-SceneInfo decode_scene_info(const std::string& path, const std::vector<char>& bytes) {
+SceneInfo decode_scene_info(const std::string& path, const std::vector<char>& bytes, uint32_t version) {
   try {
     Decoder decoder(path, "scene info", bytes);
     SceneInfo info;
     decoder.get(info.content_hash);
+    if (version >= format::kSceneGeometryHashVersion) decoder.get(info.geometry_hash);
     ImportStats& stats = info.import_stats;
     stats.source_file = decoder.get_string();
     stats.importer = decoder.get_string();

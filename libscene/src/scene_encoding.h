@@ -24,9 +24,11 @@ std::string encode_cameras(const std::vector<Camera>& cameras);
 std::string encode_textures(const std::vector<Texture>& textures);
 std::string encode_lights(const std::vector<Light>& lights);
 // Scene info: the content hash again (inside the checksummed payload, so a damaged header
-// hash is caught without recomputing it) and the import statistics.
+// hash is caught without recomputing it), the geometry hash (format version 4 on) and the
+// import statistics.
 struct SceneInfo {
   uint64_t content_hash = 0;
+  uint64_t geometry_hash = 0;  // 0 when read from a file older than version 4
   ImportStats import_stats;
 };
 std::string encode_scene_info(const SceneInfo& info);
@@ -37,6 +39,6 @@ std::vector<Material> decode_materials(const std::string& path, const std::vecto
 std::vector<Camera> decode_cameras(const std::string& path, const std::vector<char>& bytes);
 std::vector<Texture> decode_textures(const std::string& path, const std::vector<char>& bytes);
 std::vector<Light> decode_lights(const std::string& path, const std::vector<char>& bytes);
-SceneInfo decode_scene_info(const std::string& path, const std::vector<char>& bytes);
+SceneInfo decode_scene_info(const std::string& path, const std::vector<char>& bytes, uint32_t version);
 
 }  // namespace kdray::encoding

@@ -150,7 +150,8 @@ void write_scene(const std::string& path, const Scene& scene) {
   if (!problem.empty()) throw Error(path, "refusing to write an inconsistent scene: " + problem);
   const encoding::EncodedParts parts = encoding::encode_parts(scene);
   const uint64_t content_hash = encoding::content_hash(scene, parts);
-  const std::string info = encoding::encode_scene_info({content_hash, scene.import_stats});
+  const std::string info =
+      encoding::encode_scene_info({content_hash, compute_geometry_hash(scene), scene.import_stats});
 
   std::vector<SectionData> sections = {
       array_section(kScenePositions, scene.positions),
@@ -192,7 +193,7 @@ Scene read_scene(const std::string& path) {
   scene.cameras = encoding::decode_cameras(path, collector.cameras);
   if (collector.has(kSceneTextures)) scene.textures = encoding::decode_textures(path, collector.textures);
   if (collector.has(kSceneLights)) scene.lights = encoding::decode_lights(path, collector.lights);
-  encoding::SceneInfo info = encoding::decode_scene_info(path, collector.info);
+  encoding::SceneInfo info = encoding::decode_scene_info(path, collector.info, contents.header.version);
   scene.import_stats = std::move(info.import_stats);
 
   const std::string problem = first_inconsistency(scene);
@@ -205,6 +206,9 @@ Scene read_scene(const std::string& path) {
     throw Error(path, "the content hash in the header (" + hash_hex(contents.header.content_hash) +
                           ") does not match the one recorded in the scene info (" + hash_hex(info.content_hash) + ")");
   scene.content_hash = info.content_hash;
+  // Older files did not record it: one pass over the two arrays.
+  scene.geometry_hash = contents.header.version >= kSceneGeometryHashVersion ? info.geometry_hash
+                                                                            : compute_geometry_hash(scene);
   return scene;
 }
 

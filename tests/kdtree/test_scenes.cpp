@@ -19,6 +19,7 @@ Scene finish(Scene scene) {
   scene.material_ids.assign(scene.triangle_count(), 0);
   scene.materials.resize(1);
   scene.content_hash = compute_content_hash(scene);
+  scene.geometry_hash = compute_geometry_hash(scene);
   return scene;
 }
 
@@ -110,6 +111,7 @@ Scene from_triangles(const std::vector<float>& corners_xyz) {
 Scene mesh_file(const std::string& path) {
   Scene scene = import_scene(path, ImportOptions{});
   scene.content_hash = compute_content_hash(scene);
+  scene.geometry_hash = compute_geometry_hash(scene);
   return scene;
 }
 

@@ -56,7 +56,8 @@ TEST_F(KdTreeFile, RoundTripKeepsEverything) {
   const KdTree tree = build_kdtree(scene_, settings);
   write_tree(path("a.kdtree"), tree);
   const KdTree back = read_tree(path("a.kdtree"));
-  EXPECT_EQ(back.scene_hash, scene_.content_hash);
+  EXPECT_EQ(back.geometry_hash, scene_.geometry_hash);
+  EXPECT_EQ(back.key, tree_key(scene_.geometry_hash, settings));
   ASSERT_EQ(back.nodes.size(), tree.nodes.size());
   EXPECT_EQ(0, std::memcmp(back.nodes.data(), tree.nodes.data(), tree.nodes.size() * sizeof(KdNode)));
   EXPECT_EQ(back.leaf_triangles, tree.leaf_triangles);
@@ -143,6 +144,16 @@ TEST_F(KdTreeFile, TreeDeeperThanTheFullStackIsRejected) {
   EXPECT_NE(read_error(path("deep.kdtree")).find("deeper"), std::string::npos) << read_error(path("deep.kdtree"));
 }
 
+TEST_F(KdTreeFile, AKeyThatDoesNotMatchTheSettingsIsDamage) {
+  write_tree(path("a.kdtree"), tree_);
+  std::vector<char> bytes = bytes_of(path("a.kdtree"));
+  // The header's geometry hash lies outside the checksum: changing it breaks the key instead.
+  bytes[24] ^= 1;
+  write_bytes(path("b.kdtree"), bytes);
+  EXPECT_NE(read_error(path("b.kdtree")).find("does not match its geometry and build settings"), std::string::npos)
+      << read_error(path("b.kdtree"));
+}
+
 TEST_F(KdTreeFile, StaleTreeNamesBothHashes) {
   const Scene other = test::icosphere(2, {0, 0, 0}, 2);
   try {
@@ -151,8 +162,8 @@ TEST_F(KdTreeFile, StaleTreeNamesBothHashes) {
   } catch (const Error& error) {
     const std::string message = error.what();
     EXPECT_NE(message.find("stale tree"), std::string::npos) << message;
-    EXPECT_NE(message.find(hash_hex(scene_.content_hash)), std::string::npos) << message;
-    EXPECT_NE(message.find(hash_hex(other.content_hash)), std::string::npos) << message;
+    EXPECT_NE(message.find(hash_hex(scene_.geometry_hash)), std::string::npos) << message;
+    EXPECT_NE(message.find(hash_hex(other.geometry_hash)), std::string::npos) << message;
     EXPECT_NE(message.find("other.kdscene"), std::string::npos) << message;
     EXPECT_NE(message.find("rebuild with kdbuild"), std::string::npos) << message;
   }

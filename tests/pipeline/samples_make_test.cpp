@@ -1,6 +1,7 @@
 // samples/Makefile as a pipeline, run on a copy of samples/ with two small scenes (the Cornell box
 // and a one-triangle OBJ) rendered at a few pixels: a second make does nothing, touching one asset
-// redoes only its chain, touching a material redoes that scene's image.
+// redoes only its chain, touching a material redoes that scene's image but takes its tree from the
+// tree cache.
 #include <subprocess.h>
 #include <test_corpus.h>
 
@@ -79,7 +80,7 @@ TEST_F(SamplesMake, TouchingOneAssetRedoesOnlyItsChain) {
   EXPECT_EQ(make("-q all").exit_code, 0);
 }
 
-TEST_F(SamplesMake, TouchingAMaterialRedoesThatScenesImage) {
+TEST_F(SamplesMake, TouchingAMaterialRedoesThatScenesImageButNotItsTree) {
   ASSERT_EQ(make("-j2 all").exit_code, 0);
   age_every_file();
 
@@ -89,6 +90,13 @@ TEST_F(SamplesMake, TouchingAMaterialRedoesThatScenesImage) {
   EXPECT_TRUE(rewritten("cornell-box.kdscene"));
   EXPECT_TRUE(rewritten("cornell-box.png"));
   for (const std::string& output : kTriangleChain) EXPECT_FALSE(rewritten(output)) << output;
+  // The tree is not built again: the cache has it (kdbuild says so) and holds no more entries.
+  EXPECT_NE(again.out.find("cache                    hit"), std::string::npos) << again.out;
+  EXPECT_EQ(again.out.find("cache                    miss"), std::string::npos) << again.out;
+  size_t entries = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(out() / "tree-cache"))
+    entries += entry.path().extension() == ".kdtree";
+  EXPECT_EQ(entries, 2u);
 }
 
 TEST_F(SamplesMake, AMissingAssetFailsAndLeavesNoOutput) {

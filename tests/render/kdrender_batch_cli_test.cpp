@@ -153,12 +153,12 @@ TEST_F(KdrenderBatch, BadLinesAreUsageErrorsBeforeAnyFrameRenders) {
   std::ofstream(path("dup.jobs")) << "-o " << path("d.exr") << "\n# x\n-o " << path("d.exr") << " --seed 2\n";
   test::ToolRun dup = test::run_command(kdrender("--jobs " + path("dup.jobs") + " " + kDefaults + " 2>&1"));
   EXPECT_EQ(dup.exit_code, 2);
-  EXPECT_NE(dup.output.find(":3: " + path("d.exr") + " is also written by line 1"), std::string::npos) << dup.output;
+  EXPECT_NE(dup.out.find(":3: " + path("d.exr") + " is also written by line 1"), std::string::npos) << dup.out;
   std::ofstream(path("empty.jobs")) << "# nothing\n\n";
   EXPECT_EQ(test::run_command(kdrender("--jobs " + path("empty.jobs") + " 2>&1")).exit_code, 2);
   test::ToolRun missing = test::run_command(kdrender("--jobs " + path("missing.jobs") + " 2>&1"));
   EXPECT_EQ(missing.exit_code, 1);
-  EXPECT_NE(missing.output.find(path("missing.jobs")), std::string::npos) << missing.output;
+  EXPECT_NE(missing.out.find(path("missing.jobs")), std::string::npos) << missing.out;
   EXPECT_EQ(test::run_command(kdrender("-o " + path("x.exr") + " --resume 2>&1")).exit_code, 2);
 }
 

@@ -44,8 +44,8 @@ std::string MultiDevice::scene_, MultiDevice::tree_;
 TEST_F(MultiDevice, TwoDevicesGiveTheSingleDeviceImageAndReportTheirShares) {
   test::ToolRun listed = test::run_command("POCL_DEVICES='pthread pthread' " +
                                            test::shell_quoted(test::tool_path("kdrender")) + " --device list --json");
-  ASSERT_EQ(listed.exit_code, 0) << listed.output;
-  ASSERT_EQ(nlohmann::json::parse(listed.output)["devices"].size(), 2u) << "PoCL did not expose two devices";
+  ASSERT_EQ(listed.exit_code, 0) << listed.out;
+  ASSERT_EQ(nlohmann::json::parse(listed.out)["devices"].size(), 2u) << "PoCL did not expose two devices";
 
   ASSERT_EQ(kdrender("one.exr", "--device 0 --quiet").exit_code, 0);
   for (const char* devices : {"all", "1,0"}) {

@@ -17,6 +17,7 @@ namespace kdray::test {
 
 inline KdTree tree_for(Scene& scene) {
   scene.content_hash = compute_content_hash(scene);
+  scene.geometry_hash = compute_geometry_hash(scene);
   return build_kdtree(scene, BuildSettings{});
 }
 

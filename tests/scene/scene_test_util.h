@@ -32,6 +32,7 @@ inline Scene make_quad_scene(bool with_normals, bool with_uvs, bool with_texture
   scene.import_stats.dropped_degenerate = 1;
   scene.import_stats.warnings = {"a warning"};
   scene.content_hash = compute_content_hash(scene);
+  scene.geometry_hash = compute_geometry_hash(scene);
   return scene;
 }
 

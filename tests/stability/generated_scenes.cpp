@@ -21,6 +21,7 @@ Scene make_scene(std::vector<Vec3> positions, std::vector<uint32_t> indices) {
   scene.materials.push_back(Material{});
   scene.cameras.push_back(Camera{});
   scene.content_hash = compute_content_hash(scene);
+  scene.geometry_hash = compute_geometry_hash(scene);
   return scene;
 }
 
@@ -30,6 +31,7 @@ void append_mesh(Scene& scene, const Scene& extra) {
   for (uint32_t index : extra.indices) scene.indices.push_back(base + index);
   scene.material_ids.resize(scene.triangle_count(), 0);
   scene.content_hash = compute_content_hash(scene);
+  scene.geometry_hash = compute_geometry_hash(scene);
 }
 
 Scene make_icosphere(int subdivisions, float radius) {
@@ -78,6 +80,7 @@ Scene transformed(const Scene& scene, double scale, const Vec3& offset) {
          float(double(p.z) * scale + offset.z)};
   }
   result.content_hash = compute_content_hash(result);
+  result.geometry_hash = compute_geometry_hash(result);
   return result;
 }
 

@@ -39,6 +39,7 @@ nlohmann::json summary_json(const Scene& scene, const std::string& output, const
       {"emissive_triangles", scene.emissive_triangles.size()},
       {"bounds", {{"min", {bounds.min.x, bounds.min.y, bounds.min.z}}, {"max", {bounds.max.x, bounds.max.y, bounds.max.z}}}},
       {"content_hash", kdray::hash_hex(scene.content_hash)},
+      {"geometry_hash", kdray::hash_hex(scene.geometry_hash)},
       {"warnings", stats.warnings},
       {"import_seconds", timings.import_seconds},
       {"write_seconds", timings.write_seconds},
@@ -61,7 +62,8 @@ void print_summary(const Scene& scene, const std::string& output, const Timings&
   std::printf("  materials  %zu, textures %zu, emissive triangles %zu, cameras %zu (first: %s)\n",
               scene.materials.size(), scene.textures.size(), scene.emissive_triangles.size(), scene.cameras.size(),
               scene.cameras.front().name.c_str());
-  std::printf("  hash       %s\n", kdray::hash_hex(scene.content_hash).c_str());
+  std::printf("  hash       %s (geometry %s)\n", kdray::hash_hex(scene.content_hash).c_str(),
+              kdray::hash_hex(scene.geometry_hash).c_str());
   for (const std::string& warning : stats.warnings) std::printf("  warning: %s\n", warning.c_str());
 }
 

@@ -61,8 +61,11 @@ FileReport describe_scene_file(const std::string& path);
 // .kdtree files (tree_report.cpp). Throws kdray::Error when not even the header is usable.
 FileReport describe_tree_file(const std::string& path);
 
-// Whether a tree was built for a scene: compares the scene's content hash with the one the
-// tree records (both reports must be intact).
+// A tree cache folder (cache_report.cpp): its entries, most recently used first.
+FileReport describe_cache(const std::string& folder);
+
+// Whether a tree was built for a scene: compares the scene's geometry hash (for a version 1
+// tree, its content hash) with the one the tree records (both reports must be intact).
 FileReport describe_match(const FileReport& scene, const FileReport& tree);
 
 }  // namespace kdinfo

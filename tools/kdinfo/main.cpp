@@ -35,6 +35,7 @@ const FileKind* kind_of(const std::string& path) {
 }  // namespace
 
 kdinfo::FileReport describe(const std::string& path) {
+  if (std::filesystem::is_directory(path)) return kdinfo::describe_cache(path);
   const FileKind* kind = kind_of(path);
   if (kind == nullptr) {
     if (!std::filesystem::exists(path)) throw kdray::Error(path, "no such file");
@@ -47,13 +48,14 @@ bool is_kind(const kdinfo::FileReport& report, const char* kind) { return report
 
 int main(int argc, char** argv) {
   CLI::App app{"Describes kdray files (.kdscene, .kdtree) and checks that they are intact.\n"
-               "Given a scene and a tree, also says whether the tree was built for that scene."};
+               "Given a scene and a tree, also says whether the tree was built for that scene.\n"
+               "Given a tree cache folder (kdbuild --cache), lists its entries."};
   kdray::tool::OutputFlags output;
   kdray::tool::add_contract(app, "kdinfo", output, "Print the description as JSON on stdout",
                             "Exit status: 0 intact (and matching); 1 missing, damaged, unreadable or stale (one line "
                             "on stderr says why); 2 bad command line.");
   std::vector<std::string> paths;
-  app.add_option("FILE", paths, "The file to describe, or a .kdscene and a .kdtree to check together")
+  app.add_option("FILE", paths, "The file to describe, a .kdscene and a .kdtree to check together, or a tree cache folder")
       ->required()
       ->expected(1, 2);
 

@@ -95,6 +95,7 @@ json scene_json(const Scene& scene) {
     punctual.push_back(light);
   }
   return {
+      {"geometry_hash", kdray::hash_hex(scene.geometry_hash)},
       {"triangles", scene.triangle_count()},
       {"vertices", scene.positions.size()},
       {"bounds", {{"min", vec3_json(bounds.min)}, {"max", vec3_json(bounds.max)}}},
@@ -119,6 +120,7 @@ json scene_json(const Scene& scene) {
 std::string scene_text(const json& j) {
   std::string text;
   const json& bounds = j["bounds"];
+  text += format("geometry   %s (what its k-d tree depends on)\n", j["geometry_hash"].get<std::string>().c_str());
   text += format("triangles  %llu\nvertices   %llu\n", j["triangles"].get<unsigned long long>(),
                  j["vertices"].get<unsigned long long>());
   text += format("bounds     (%g, %g, %g) .. (%g, %g, %g)\n", bounds["min"][0].get<double>(),

@@ -14,6 +14,7 @@ using nlohmann::json;
 
 json tree_json(const kdray::KdTree& tree) {
   json j = kdray::tool::tree_stats_json(tree);
+  j["key"] = kdray::hash_hex(tree.key);
   const kdray::Bounds& bounds = tree.bounds;
   j["bounds"] = {{"min", {bounds.min.x, bounds.min.y, bounds.min.z}}, {"max", {bounds.max.x, bounds.max.y, bounds.max.z}}};
   return j;
@@ -23,6 +24,7 @@ std::string tree_text(const json& j) {
   const json& s = j["build_settings"];
   const json& b = j["bounds"];
   std::string text;
+  if (j["key"] != kdray::hash_hex(0)) text += format("key        %s\n", j["key"].get<std::string>().c_str());
   text += format("triangles  %llu\n", j["triangles"].get<unsigned long long>());
   text += format("bounds     (%g, %g, %g) .. (%g, %g, %g)\n", b["min"][0].get<double>(), b["min"][1].get<double>(),
                  b["min"][2].get<double>(), b["max"][0].get<double>(), b["max"][1].get<double>(),
@@ -47,14 +49,16 @@ FileReport describe_tree_file(const std::string& path) {
   const kdray::ContainerContents header =
       kdray::peek_container(path, kdray::format::kTreeMagic, kdray::format::kTreeVersion, "kdtree");
   FileReport report;
-  const std::string scene_hash = kdray::hash_hex(header.header.content_hash);
+  // Version 2 trees record their scene's geometry hash, version 1 trees its content hash.
+  const bool geometry = header.header.version >= 2;
+  const std::string hash = kdray::hash_hex(header.header.content_hash);
   report.json = {{"file", path},
                  {"kind", "kdtree"},
                  {"format_version", header.header.version},
                  {"file_size", header.header.payload_size + sizeof(kdray::format::FileHeader)},
-                 {"scene_hash", scene_hash}};
-  report.text = format("%s: kdtree version %u\nscene hash %s (the scene it was built from)\n", path.c_str(),
-                       header.header.version, scene_hash.c_str());
+                 {geometry ? "geometry_hash" : "scene_hash", hash}};
+  report.text = format("%s: kdtree version %u\n%s %s (the scene it was built from)\n", path.c_str(),
+                       header.header.version, geometry ? "geometry  " : "scene hash", hash.c_str());
   add_verified_details(
       report, "checksum and structure", [&] { return kdray::read_tree(path); }, tree_json, tree_text);
   return report;
@@ -62,18 +66,23 @@ FileReport describe_tree_file(const std::string& path) {
 
 FileReport describe_match(const FileReport& scene, const FileReport& tree) {
   FileReport report;
-  const std::string scene_hash = scene.json.at("content_hash");
-  const std::string tree_scene_hash = tree.json.at("scene_hash");
-  const bool same_hash = scene_hash == tree_scene_hash;
+  // A version 2 tree names its scene's geometry hash (known once the scene was read whole), a
+  // version 1 tree the scene's content hash.
+  const bool geometry = tree.json.contains("geometry_hash");
+  const std::string what = geometry ? "geometry" : "scene";
+  const std::string tree_scene_hash = tree.json.at(geometry ? "geometry_hash" : "scene_hash");
+  const std::string scene_hash = scene.json.value(geometry ? "geometry_hash" : "content_hash", std::string());
+  const bool same_hash = scene_hash.empty() || scene_hash == tree_scene_hash;
   // The recorded hash covers the triangles, so a matching hash with intact files means the
   // tree's triangle references fit the scene; a damaged file cannot be vouched for.
   report.intact = same_hash && scene.intact && tree.intact;
   report.json = {{"scene", scene.json.at("file")}, {"tree", tree.json.at("file")}, {"match", report.intact}};
   if (!same_hash) {
-    report.problem = tree.json.at("file").get<std::string>() + ": stale tree: built for scene " + tree_scene_hash +
-                     ", not for " + scene.json.at("file").get<std::string>() + ": rebuild with kdbuild";
-    report.text = format("match      NO: stale tree: built for scene %s, but %s has %s: rebuild with kdbuild\n",
-                         tree_scene_hash.c_str(), scene.json.at("file").get<std::string>().c_str(), scene_hash.c_str());
+    report.problem = tree.json.at("file").get<std::string>() + ": stale tree: built for " + what + " " +
+                     tree_scene_hash + ", not for " + scene.json.at("file").get<std::string>() + ": rebuild with kdbuild";
+    report.text = format("match      NO: stale tree: built for %s %s, but %s has %s: rebuild with kdbuild\n",
+                         what.c_str(), tree_scene_hash.c_str(), scene.json.at("file").get<std::string>().c_str(),
+                         scene_hash.c_str());
   } else if (!report.intact)
     report.text = "match      unknown: a file is damaged\n";
   else

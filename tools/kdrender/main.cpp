@@ -15,6 +15,7 @@
 #include <kdray/kdtree.h>
 #include <kdray/render.h>
 #include <kdray/scene_file.h>
+#include <kdray/tree_cache.h>
 
 #include <device_option.h>
 #include <progress.h>
@@ -34,7 +35,7 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 struct Options {
-  std::string scene_path, tree_path;
+  std::string scene_path, tree_path, cache_folder;
   std::vector<std::string> merge_inputs;
   std::string jobs_path;
   bool resume = false;
@@ -45,6 +46,9 @@ struct Options {
 void add_options(CLI::App& app, Options& o) {
   app.add_option("SCENE", o.scene_path, "The .kdscene to render");
   app.add_option("TREE", o.tree_path, "Its .kdtree (from kdbuild; must match the scene)");
+  app.add_option("--cache", o.cache_folder,
+                 "Instead of TREE: a tree cache folder (kdbuild --cache) where the scene's tree is found, or built "
+                 "with the default settings");
   kdrender::add_frame_options(app, o.frame);
   app.add_option("--merge", o.merge_inputs,
                  "Merge EXRs of sample ranges of one render (any order) into --output, exactly (film.h); "
@@ -88,8 +92,9 @@ int render(const Options& o) {
   if (o.jobs_path.empty()) frame = kdrender::resolve_frame(o.frame, environments);
   auto load_start = Clock::now();
   kdray::Scene scene = kdray::read_scene(o.scene_path);
-  kdray::KdTree tree = kdray::read_tree(o.tree_path);
-  kdray::check_tree_matches_scene(tree, o.tree_path, scene, o.scene_path);
+  kdray::KdTree tree = kdray::tree_for_scene(scene, o.scene_path, o.tree_path, o.cache_folder, [](const std::string& line) {
+    kdray::tool::print_warning("kdrender", line);
+  });
   double load_seconds = seconds_since(load_start);
   if (!o.jobs_path.empty()) {
     return kdrender::run_batch(scene, tree, o.frame, {o.scene_path, o.jobs_path, o.resume, o.flags.json, o.flags.quiet},
@@ -131,7 +136,8 @@ int main(int argc, char** argv) {
       return merge(o, app.count("--spp") + app.count("--sample-offset") > 0);
     }
     if (o.resume && o.jobs_path.empty()) throw UsageError("--resume needs --jobs");
-    if (o.scene_path.empty() || o.tree_path.empty()) throw UsageError("SCENE and TREE are required");
+    if (o.scene_path.empty() || o.tree_path.empty() == o.cache_folder.empty())
+      throw UsageError("SCENE and either TREE or --cache DIR are required");
     return render(o);
   });
 }

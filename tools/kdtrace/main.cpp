@@ -1,6 +1,7 @@
 // kdtrace SCENE TREE: closest hit of every ray of a ray file (or of a generated ray set),
 // written as a hit file, with the tracing rate in Mrays/s.
 #include <kdray/kdtree.h>
+#include <kdray/tree_cache.h>
 #include <kdray/ray_files.h>
 #include <kdray/ray_sets.h>
 #include <kdray/scene_file.h>
@@ -63,7 +64,7 @@ int main(int argc, char** argv) {
   CLI::App app{"kdtrace: closest hit of every ray against a scene and its k-d tree"};
   kdray::tool::OutputFlags output;
   kdray::tool::add_contract(app, "kdtrace", output, "Print the summary as JSON on stdout");
-  std::string scene_path, tree_path, rays_path, hits_path, generate, write_rays_path, stack_name = "short";
+  std::string scene_path, tree_path, cache_folder, rays_path, hits_path, generate, write_rays_path, stack_name = "short";
   size_t count = 1000000;
   uint32_t width = 1024, height = 768;
   uint64_t seed = 1;
@@ -72,6 +73,9 @@ int main(int argc, char** argv) {
   opencl_device.device = "host";
   app.add_option("SCENE", scene_path, "Scene (.kdscene)");
   app.add_option("TREE", tree_path, "Its k-d tree (.kdtree, from kdbuild)");
+  app.add_option("--cache", cache_folder,
+                 "Instead of TREE: a tree cache folder (kdbuild --cache) where the scene's tree is found, or built "
+                 "with the default settings");
   auto* rays_option = app.add_option("--rays", rays_path, "Ray file to trace (formats/rays.md)")->group("Rays");
   auto* generate_option =
       app.add_option("--generate", generate,
@@ -98,12 +102,14 @@ int main(int argc, char** argv) {
     const kdray::tool::DeviceKind device = kdray::tool::device_kind(opencl_device.device);
     if (device == kdray::tool::DeviceKind::List) return kdray::tool::list_opencl_devices(output.json);
     if (device == kdray::tool::DeviceKind::All) throw kdray::tool::UsageError("--device all: kdtrace traces on one device");
-    if (scene_path.empty() || tree_path.empty()) throw kdray::tool::UsageError("SCENE and TREE are required");
+    if (scene_path.empty() || tree_path.empty() == cache_folder.empty())
+      throw kdray::tool::UsageError("SCENE and either TREE or --cache DIR are required");
     if (rays_path.empty() == generate.empty()) throw kdray::tool::UsageError("give one of --rays or --generate");
     const bool host = device == kdray::tool::DeviceKind::Host;
     const kdray::Scene scene = kdray::read_scene(scene_path);
-    const kdray::KdTree tree = kdray::read_tree(tree_path);
-    kdray::check_tree_matches_scene(tree, tree_path, scene, scene_path);
+    const kdray::KdTree tree = kdray::tree_for_scene(scene, scene_path, tree_path, cache_folder, [](const std::string& line) {
+      kdray::tool::print_warning("kdtrace", line);
+    });
 
     std::vector<RayRecord> rays;
     if (!rays_path.empty()) rays = kdray::read_rays(rays_path);

@@ -14,7 +14,7 @@ struct FileHeader {
   uint32_t version;          // format version of this file kind
   uint32_t header_size;      // sizeof(FileHeader), for forward compatibility checks
   uint64_t flags;            // which optional sections exist (kind-specific bits)
-  uint64_t content_hash;     // .kdscene: hash of the scene content; .kdtree: hash of the scene it was built from
+  uint64_t content_hash;     // .kdscene: hash of the scene content; .kdtree: geometry hash of the scene it was built from
   uint64_t payload_size;     // bytes after the header: section table + section data
   uint64_t payload_checksum; // XXH3-64 of those payload_size bytes
   uint32_t section_count;    // entries in the section table
@@ -37,8 +37,10 @@ constexpr uint32_t kMaxSections = 64;
 // ---- .kdscene -------------------------------------------------------------------------
 constexpr char kSceneMagic[8] = {'K', 'D', 'S', 'C', 'E', 'N', 'E', '\0'};
 // Version 2 added punctual lights (kSceneLights), version 3 the metallic-roughness material and
-// its texture and alpha fields; version 1 and 2 files are still read.
-constexpr uint32_t kSceneVersion = 3;
+// its texture and alpha fields, version 4 the geometry hash in the scene info; version 1 to 3
+// files are still read.
+constexpr uint32_t kSceneVersion = 4;
+constexpr uint32_t kSceneGeometryHashVersion = 4;  // the first version whose scene info records it
 
 enum SceneSection : uint32_t {
   kScenePositions = 1,       // float32 x,y,z per vertex
@@ -64,7 +66,9 @@ enum SceneFlags : uint64_t {
 
 // ---- .kdtree --------------------------------------------------------------------------
 constexpr char kTreeMagic[8] = {'K', 'D', 'T', 'R', 'E', 'E', '\0', '\0'};
-constexpr uint32_t kTreeVersion = 1;
+// Version 2 keys a tree by its scene's geometry hash and build settings (kTreeKey); version 1
+// files, which recorded the scene's content hash, are still read.
+constexpr uint32_t kTreeVersion = 2;
 
 enum TreeSection : uint32_t {
   kTreeNodes = 1,            // KdNode (kernels/kd_types.h), 8 bytes each, root first
@@ -72,6 +76,7 @@ enum TreeSection : uint32_t {
   kTreeParameters = 3,       // cereal portable binary: BuildSettings
   kTreeStatistics = 4,       // cereal portable binary: TreeStats
   kTreeBounds = 5,           // float32 min x,y,z, max x,y,z of the root voxel
+  kTreeKey = 6,              // uint64 tree key (version 2): geometry hash, settings, version
 };
 
 }  // namespace kdray::format

@@ -54,8 +54,17 @@ struct KdTree {
   Bounds bounds;                         // the root voxel
   BuildSettings settings;
   TreeStats stats;
-  uint64_t scene_hash = 0;               // content hash of the scene it was built from
+  // What it was built from: the scene's geometry hash and, with the settings and the format
+  // version, the tree's key (tree_key; the name of its tree cache entry). A version 1 file
+  // recorded its scene's content hash instead (v1_scene_hash); geometry_hash and key are then 0.
+  uint64_t geometry_hash = 0;
+  uint64_t key = 0;
+  uint64_t v1_scene_hash = 0;
 };
+
+// The key of the tree of a scene with this geometry hash built with these settings: XXH3-64 over
+// the geometry hash, the encoded settings and the tree format version (formats/kdtree.md).
+uint64_t tree_key(uint64_t geometry_hash, const BuildSettings& settings);
 
 // Called with the fraction of triangles placed in finished subtrees (0..1), from any thread,
 // serialised by the builder.
@@ -76,8 +85,8 @@ struct BuildControl {
   BuildTimings* timings = nullptr;  // filled in when set
 };
 
-// Builds the tree for scene (whose content_hash is recorded; compute it first). Triangles with
-// non-finite vertices are left out. Throws kdray::Error for settings out of range.
+// Builds the tree for scene (its geometry hash and key are computed from its arrays). Triangles
+// with non-finite vertices are left out. Throws kdray::Error for settings out of range.
 KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const BuildControl& control = {});
 
 // Statistics of a tree (used by the builders and by read_tree's consistency check).
@@ -90,9 +99,9 @@ void write_tree(const std::string& path, const KdTree& tree);
 // traversal can trust it. Throws kdray::Error naming the file.
 KdTree read_tree(const std::string& path);
 
-// Throws kdray::Error when the tree was built for another scene ("stale tree: built for scene
-// <hash>, but <scene path> has <hash>: rebuild with kdbuild") or references a triangle the
-// scene does not have.
+// Throws kdray::Error when the tree was built for other geometry ("stale tree: built for
+// geometry <hash>, but <scene path> has geometry <hash>: rebuild with kdbuild"; for a version 1
+// tree, another scene content) or references a triangle the scene does not have.
 void check_tree_matches_scene(const KdTree& tree, const std::string& tree_path, const Scene& scene,
                               const std::string& scene_path);
 

@@ -28,8 +28,14 @@ class AtomicFile {
   // Flushes the finished temporary to disk and renames it over the target. Throws kdray::Error
   // naming the target.
   void commit();
+  // Like commit(), but an existing target is left in place and the temporary removed (false): of
+  // several writers of the same content, the first wins (a tree cache entry, for one).
+  bool commit_unless_exists();
 
  private:
+  void sync_folder() const;
+  bool discard();  // removes the temporary; false
+
   std::string target_, temporary_;
   bool committed_ = false;
 };

@@ -118,6 +118,7 @@ struct Scene {
   std::vector<Light> lights;           // punctual lights, or empty
   ImportStats import_stats;
   uint64_t content_hash = 0;           // set by compute_content_hash / on load
+  uint64_t geometry_hash = 0;          // set by compute_geometry_hash / on load
 
   size_t triangle_count() const { return indices.size() / 3; }
 };
@@ -131,5 +132,9 @@ Camera default_camera(const Bounds& bounds);
 
 // 64-bit XXH3 over geometry, materials, textures, cameras and lights: what a tree or image was made from.
 uint64_t compute_content_hash(const Scene& scene);
+
+// 64-bit XXH3 over positions and indices only: what a k-d tree depends on, so a scene whose
+// materials, textures, lights or cameras change keeps its tree (formats/kdscene.md).
+uint64_t compute_geometry_hash(const Scene& scene);
 
 }  // namespace kdray

@@ -139,7 +139,7 @@ TEST_F(Cli, InfoDescribesAnIntactScene) {
   const nlohmann::json description = nlohmann::json::parse(json.out);
   EXPECT_EQ(description["intact"], true);
   EXPECT_EQ(description["kind"], "kdscene");
-  EXPECT_EQ(description["format_version"], 3);
+  EXPECT_EQ(description["format_version"], format::kSceneVersion);
   EXPECT_EQ(description["triangles"], 1);
   EXPECT_EQ(description["cameras"].size(), 1u);
   EXPECT_EQ(description["materials"][0]["type"], "diffuse");

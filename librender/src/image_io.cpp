@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 namespace kdray {
 namespace fs = std::filesystem;
@@ -101,26 +102,43 @@ uint64_t parse_hex(const std::string& path, const std::string& text) {
 }
 
 // What an OpenEXR header claims, read by kdray before OpenEXR sees the file: OpenEXR sizes its
-// chunk offset tables and line buffers from the data window while opening, so a hostile header
-// could make it allocate any amount of memory before kdray gets a say.
+// chunk offset tables, line buffers and some attribute values from the header while opening,
+// so a hostile header could make it allocate any amount of memory before kdray gets a say.
 struct ExrClaims {
   int64_t width = 0, height = 0, channels = 0;
+};
+
+// The attribute types a kdrender film may carry, with their sizes. OpenEXR reads a value of a
+// fixed-size type without looking at the size field, so the size must be exactly right or the
+// two readers would part ways and OpenEXR would take later bytes for sizes kdray never checked
+// (a string attribute claiming 2 GB). Types whose reader allocates from counts inside the value
+// (preview, stringvector, floatvector, ...) are not accepted at all.
+constexpr int64_t kSizeFromField = -1;
+const std::map<std::string, int64_t> kExrAttributeSizes = {
+    {"string", kSizeFromField}, {"chlist", kSizeFromField}, {"int", 4},     {"float", 4},
+    {"double", 8},              {"compression", 1},         {"lineOrder", 1}, {"box2i", 16},
+    {"box2f", 16},              {"v2i", 8},                 {"v2f", 8},     {"v3i", 12},
+    {"v3f", 12},                {"m33f", 36},               {"m44f", 64},   {"chromaticities", 32},
+    {"rational", 8},            {"timecode", 8},            {"keycode", 28},
 };
 
 ExrClaims read_exr_claims(const std::string& path, const std::string& header) {
   auto fail = [&](const std::string& what) { return Error(path, "not a kdrender EXR: " + what); };
   if (header.size() < 8 || header.compare(0, 4, "\x76\x2f\x31\x01") != 0) throw fail("not an OpenEXR file");
-  // kdrender writes single-part scanline files; tiles are sized by their own header field.
-  constexpr uint8_t kTiled = 0x02, kDeep = 0x08, kMultiPart = 0x10;  // bits 9, 11, 12 of the version field
-  if (uint8_t(header[5]) & (kTiled | kDeep | kMultiPart)) throw fail("a tiled, deep or multi-part file");
+  // kdrender writes single-part scanline files of format version 2; the only flag it may set is
+  // "long names" (bit 10), which raises the name limit from 31 to 255 bytes.
+  constexpr uint8_t kLongNames = 0x04;
+  if (header[4] != 2 || (uint8_t(header[5]) & ~kLongNames) != 0 || header[6] != 0 || header[7] != 0)
+    throw fail("a tiled, deep, multi-part or newer-version file");
+  const size_t max_name = (uint8_t(header[5]) & kLongNames) ? 255 : 31;
   ExrClaims claims;
   bool have_window = false, have_channels = false;
   size_t at = 8;
-  auto zero_terminated = [&]() {
-    const size_t end = header.find('\0', at);
-    if (end == std::string::npos) throw fail("damaged header");
-    std::string text = header.substr(at, end - at);
-    at = end + 1;
+  auto name_at = [&](size_t& from, size_t limit) {
+    const size_t end = header.find('\0', from);
+    if (end == std::string::npos || end >= limit || end - from > max_name) throw fail("damaged header");
+    std::string text = header.substr(from, end - from);
+    from = end + 1;
     return text;
   };
   auto int32_at = [&](size_t offset) {
@@ -129,34 +147,45 @@ ExrClaims read_exr_claims(const std::string& path, const std::string& header) {
     return int64_t(value);
   };
   for (;;) {
-    const std::string name = zero_terminated();
-    if (name.empty()) break;  // the end of the (first) header
-    const std::string type = zero_terminated();
+    const std::string name = name_at(at, header.size());
+    if (name.empty()) break;  // the end of the header
+    const std::string type = name_at(at, header.size());
     if (at + 4 > header.size()) throw fail("damaged header");
     const int64_t size = int32_at(at);
     at += 4;
     if (size < 0 || uint64_t(size) > header.size() - at) throw fail("damaged header");
-    if (name == "dataWindow" && type == "box2i" && size == 16) {
+    const auto known = kExrAttributeSizes.find(type);
+    if (known == kExrAttributeSizes.end()) throw fail("attribute " + name + " has type " + type);
+    if (known->second != kSizeFromField && known->second != size)
+      throw fail("attribute " + name + " has the wrong size for its type " + type);
+    const size_t end = at + size_t(size);
+    if (name == "dataWindow" && type == "box2i") {
       claims.width = int32_at(at + 8) - int32_at(at) + 1;
       claims.height = int32_at(at + 12) - int32_at(at + 4) + 1;
       have_window = true;
     } else if (name == "channels" && type == "chlist") {
-      // Each entry: a zero-terminated name and 16 bytes; a zero byte ends the list.
-      for (size_t entry = at; entry < at + size_t(size) && header[entry] != '\0'; ++claims.channels) {
-        const size_t end = header.find('\0', entry);
-        if (end == std::string::npos || end + 17 > at + size_t(size)) throw fail("damaged channel list");
-        entry = end + 17;
+      // Entries (a name and 16 bytes) up to an empty name, which must be the value's last byte:
+      // OpenEXR reads the list up to that empty name whatever the size says.
+      size_t entry = at;
+      for (; entry < end && header[entry] != '\0'; ++claims.channels) {
+        name_at(entry, end);
+        if (entry + 16 > end) throw fail("damaged channel list");
+        entry += 16;
       }
+      if (entry + 1 != end) throw fail("damaged channel list");
       have_channels = true;
+    } else if (name == "compression" && type == "compression") {
+      // What the expansion bound below holds for: none, RLE, ZIP of one or of 16 lines.
+      if (uint8_t(header[at]) > 3) throw fail("compression other than none, RLE or ZIP");
     }
-    at += size_t(size);
+    at = end;
   }
   if (!have_window || !have_channels) throw fail("no data window or channel list in the header");
   return claims;
 }
 
-// A kdrender film is ZIP-compressed, and deflate expands at most 1032-fold: more pixels than
-// that ratio allows cannot be in the file.
+// A kdrender film is ZIP-compressed, and deflate expands at most 1032-fold (RLE 64-fold): more
+// pixels than that ratio allows cannot be in the file.
 void check_exr_claims(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
   std::string header(64 * 1024, '\0');  // far more than any kdrender header
@@ -204,8 +233,12 @@ Film read_film_exr(const std::string& path) {
   if (!fs::is_regular_file(path, error))
     throw Error(path, fs::exists(path, error) ? "not a regular file" : "no such file");
   check_exr_claims(path);
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw Error(path, "cannot read image: " + OIIO::geterror());
+  // By the EXR reader alone: ImageInput::open would try every other format's reader on a file
+  // OpenEXR refused, and some of them (DICOM) load hundreds of megabytes of tables to look.
+  auto in = OIIO::ImageInput::create("exr");
+  OIIO::ImageSpec opened;
+  if (!in || !in->open(path, opened))
+    throw Error(path, "cannot read image: " + (in ? in->geterror() : OIIO::geterror()));
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.deep || spec.x != 0 || spec.y != 0 || spec.z != 0 || spec.depth != 1)
     throw Error(path, "not a kdrender EXR: a deep image, or its data window does not start at the origin");

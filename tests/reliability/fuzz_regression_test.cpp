@@ -13,6 +13,10 @@
 #include <functional>
 #include <map>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 namespace kdray {
 namespace {
 
@@ -45,6 +49,33 @@ TEST(FuzzRegression, EveryKeptInputIsRejectedCleanly) {
     ++checked;
   }
   EXPECT_GT(checked, 0u);
+}
+
+// Rejecting is not enough: an input that made a library allocate gigabytes before it failed
+// (OpenEXR reading a string attribute whose size field claimed 2 GB) must be refused before that.
+// Each reader runs in a child so that its peak resident memory can be measured alone.
+TEST(FuzzRegression, EveryKeptInputIsRejectedWithinBoundedMemory) {
+  constexpr long kMaxResidentKilobytes = 768 * 1024;  // the sanitizers' shadow and quarantine included
+  for (const auto& entry : fs::directory_iterator(KDRAY_RELIABILITY_INPUTS)) {
+    const std::string path = entry.path().string();
+    const auto reader = kReaders.find(entry.path().extension().string());
+    if (reader == kReaders.end()) continue;
+    SCOPED_TRACE(path);
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      try {
+        reader->second(path);
+      } catch (...) {
+      }
+      ::_exit(0);
+    }
+    int status = 0;
+    struct rusage usage {};
+    ASSERT_EQ(::wait4(child, &status, 0, &usage), child);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "status " << status;
+    EXPECT_LT(usage.ru_maxrss, kMaxResidentKilobytes) << "peak resident kilobytes";
+  }
 }
 
 }  // namespace

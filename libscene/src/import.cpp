@@ -84,7 +84,8 @@ Scene import_scene(const std::string& path, const ImportOptions& options) {
   const bool use_tinyobj =
       options.importer == Importer::TinyObj || (options.importer == Importer::Auto && has_obj_extension(path));
   // Debian's Assimp aborts or crashes on some malformed files (RELIABILITY.md): it runs apart.
-  Scene scene = use_tinyobj ? import_with_tinyobj(path) : import_in_child_process(path, import_with_assimp, "Assimp");
+  Scene scene = use_tinyobj ? import_with_tinyobj(path)
+                            : import_in_child_process(path, import_with_assimp, "Assimp", options.max_memory);
   scene.import_stats.source_file = std::filesystem::path(path).filename().string();
   if (scene.indices.empty()) {
     const ImportStats& s = scene.import_stats;

@@ -5,6 +5,7 @@
 
 #include <kdray/scene.h>
 
+#include <cstdint>
 #include <map>
 #include <string>
 
@@ -14,10 +15,12 @@ Scene import_with_tinyobj(const std::string& path);
 Scene import_with_assimp(const std::string& path);
 
 // Runs `importer` in a child process and returns its scene; the child's death (an abort or a
-// crash inside a third-party importer, or the kernel killing it for memory) becomes a
-// kdray::Error naming `path` and `importer_name`, and the importer's own errors pass through.
+// crash inside a third-party importer, the kernel killing it for memory, or a CPU time limit
+// that grows with the file's size) becomes a kdray::Error naming `path` and `importer_name`,
+// and the importer's own errors pass through. `max_memory` (bytes, 0: none) limits the
+// child's address space beyond what the process already holds.
 Scene import_in_child_process(const std::string& path, Scene (*importer)(const std::string&),
-                              const char* importer_name);
+                              const char* importer_name, uint64_t max_memory);
 
 // Decodes each distinct texture once and appends it to scene.textures; unreadable textures
 // become warnings in scene.import_stats and index -1.

@@ -12,9 +12,11 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <new>
 #include <random>
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -28,6 +30,35 @@ void write_fully(int fd, const std::string& text) {
     if (written <= 0) return;
     done += size_t(written);
   }
+}
+
+// A malformed file can make an importer loop forever (Assimp's PLY reader on a 25-byte file).
+// The CPU time the child may use grows with the file: a few seconds for any small asset, and
+// far more per megabyte than an importer takes on valid data.
+constexpr uint64_t kImportCpuSecondsBase = 3;
+constexpr uint64_t kImportCpuSecondsPerMegabyte = 2;
+
+uint64_t cpu_seconds_for(const std::string& path) {
+  std::error_code error;
+  const uint64_t size = std::filesystem::file_size(path, error);
+  return kImportCpuSecondsBase + (error ? 0 : kImportCpuSecondsPerMegabyte * ((size >> 20) + 1));
+}
+
+// The address space the process holds now, so that the child's limit adds the budget to it
+// (a sanitizer's shadow mappings are part of it and must not count against the import).
+uint64_t address_space_bytes() {
+  std::FILE* statm = std::fopen("/proc/self/statm", "r");
+  unsigned long long pages = 0;
+  if (statm) {
+    if (std::fscanf(statm, "%llu", &pages) != 1) pages = 0;
+    std::fclose(statm);
+  }
+  return uint64_t(pages) * uint64_t(::sysconf(_SC_PAGESIZE));
+}
+
+void limit(int resource, uint64_t soft, uint64_t hard) {
+  const struct rlimit value = {rlim_t(soft), rlim_t(hard)};
+  ::setrlimit(resource, &value);
 }
 
 std::string read_until_closed(int fd) {
@@ -44,7 +75,8 @@ std::string read_until_closed(int fd) {
 }  // namespace
 
 Scene import_in_child_process(const std::string& path, Scene (*importer)(const std::string&),
-                              const char* importer_name) {
+                              const char* importer_name, uint64_t max_memory) {
+  const uint64_t cpu_seconds = cpu_seconds_for(path);
   std::random_device entropy;
   const std::string handover = (std::filesystem::temp_directory_path() /
                                 ("kdray-import-" + std::to_string(::getpid()) + "-" + std::to_string(entropy()) + ".kdscene"))
@@ -62,7 +94,13 @@ Scene import_in_child_process(const std::string& path, Scene (*importer)(const s
     ::close(message_pipe[0]);
     // The child dies of its own faults: handlers the parent installed (a sanitizer's, a
     // fuzzer's) would otherwise report the parent's failure from inside the child.
-    for (int fault : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL}) std::signal(fault, SIG_DFL);
+    for (int fault : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGXCPU}) std::signal(fault, SIG_DFL);
+    // SIGXCPU at the soft limit, SIGKILL a second later if something caught it.
+    limit(RLIMIT_CPU, cpu_seconds, cpu_seconds + 1);
+    if (max_memory > 0) {
+      const uint64_t space = address_space_bytes() + max_memory;
+      limit(RLIMIT_AS, space, space);
+    }
     // The tool's error is one line: what the importer prints before it dies (an assertion's
     // text) would add lines the parent cannot attribute, so the child's stderr is discarded.
     const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
@@ -70,6 +108,10 @@ Scene import_in_child_process(const std::string& path, Scene (*importer)(const s
     int status = 0;
     try {
       write_scene(handover, importer(path));
+    } catch (const std::bad_alloc&) {
+      write_fully(message_pipe[1], path + ": importing it with " + importer_name + " needs more than --max-memory (" +
+                                       std::to_string(max_memory >> 20) + " MiB)");
+      status = 1;
     } catch (const std::exception& error) {
       // kdray::Error messages already name the file; anything else is said as it is.
       write_fully(message_pipe[1], dynamic_cast<const Error*>(&error) ? error.what() : path + ": " + error.what());
@@ -81,8 +123,10 @@ Scene import_in_child_process(const std::string& path, Scene (*importer)(const s
   const std::string message = read_until_closed(message_pipe[0]);
   ::close(message_pipe[0]);
   int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  struct rusage usage {};
+  while (::wait4(child, &status, 0, &usage) < 0 && errno == EINTR) {
   }
+  const uint64_t cpu_used = uint64_t(usage.ru_utime.tv_sec) + uint64_t(usage.ru_stime.tv_sec);
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
     struct Remove {
       const std::string& file;
@@ -94,6 +138,9 @@ Scene import_in_child_process(const std::string& path, Scene (*importer)(const s
   if (WIFEXITED(status) && !message.empty()) throw Error("", message);
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);
+    if (signal == SIGXCPU || (signal == SIGKILL && cpu_used >= cpu_seconds))
+      throw Error(path, std::string(importer_name) + " did not finish within " + std::to_string(cpu_seconds) +
+                            " s of CPU time (the limit for a file of this size); the file is probably malformed");
     throw Error(path, std::string(importer_name) + " failed on this file (its process ended with signal " +
                           std::to_string(signal) + ", " + ::strsignal(signal) +
                           (signal == SIGKILL ? ": out of memory?" : "") + "); the file is probably malformed");

@@ -4,6 +4,7 @@
 
 #include <kdray/scene.h>
 
+#include <cstdint>
 #include <string>
 
 namespace kdray {
@@ -16,6 +17,7 @@ struct ImportOptions {
   float scale = 1.0f;
   UpAxis up_axis = UpAxis::Y;
   std::string camera;  // name or index of the asset camera to put first; empty: the asset's first
+  uint64_t max_memory = 0;  // bytes an importer run in its own process may use; 0: no limit
 };
 
 // Throws kdray::Error naming `path` when the file cannot be read or holds no triangles.

@@ -3,6 +3,7 @@
 #include <kdray/import.h>
 
 #include <kdray/error.h>
+#include <kdray/memory_budget.h>
 #include <kdray/util.h>
 
 #include "importers.h"
@@ -76,11 +77,22 @@ void select_camera(Scene& scene, const std::string& path, const std::string& wan
   std::rotate(scene.cameras.begin(), found, found + 1);
 }
 
+// Peak memory of an import as a multiple of the file's size: 5.4 measured for a 26 MB OBJ
+// (tinyobjloader, 720k triangles) and 5.3 for a 30 MB binary PLY (Assimp, 1.6M triangles).
+constexpr uint64_t kImportBytesPerFileByte = 8;
+
+uint64_t estimated_import_bytes(const std::string& path) {
+  std::error_code error;
+  const uint64_t size = std::filesystem::file_size(path, error);
+  return error ? 0 : kImportBytesPerFileByte * size;
+}
+
 }  // namespace
 
 Scene import_scene(const std::string& path, const ImportOptions& options) {
   check_readable(path);
   if (!(options.scale > 0) || !std::isfinite(options.scale)) throw Error("", "the scale must be a positive number");
+  check_memory_estimate(path, "importing it", estimated_import_bytes(path), options.max_memory);
   const bool use_tinyobj =
       options.importer == Importer::TinyObj || (options.importer == Importer::Auto && has_obj_extension(path));
   // Debian's Assimp aborts or crashes on some malformed files (RELIABILITY.md): it runs apart.

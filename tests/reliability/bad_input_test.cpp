@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -89,6 +90,7 @@ std::vector<BadInput> table() {
       {"kdconvert/truncated ply", {"{DIR}/truncated.ply", out + ".kdscene"}, 1, "truncated.ply"},
       {"kdconvert/output folder missing", {"{DIR}/quad.obj", "{DIR}/no/such/folder/x.kdscene"}, 1, "x.kdscene"},
       {"kdconvert/negative scale", {"{DIR}/quad.obj", out + ".kdscene", "--scale", "-1"}, 2, "scale"},
+      {"kdconvert/memory budget not a size", {"{DIR}/quad.obj", out + ".kdscene", "--max-memory", "lots"}, 2, "max-memory"},
       {"kdconvert/unknown up axis", {"{DIR}/quad.obj", out + ".kdscene", "--up-axis", "w"}, 2, "up-axis"},
 
       {"kdbuild/missing scene", {"{DIR}/missing.kdscene", out + ".kdtree"}, 1, "missing.kdscene"},
@@ -163,6 +165,43 @@ TEST_F(BadInputTable, EveryToolAnswersWithOneLineAndTheDocumentedExitCode) {
     ASSERT_EQ(lines.size(), 1u) << result.err;
     EXPECT_EQ(lines[0].rfind(tool + ": error: ", 0), 0u) << lines[0];
     EXPECT_NE(lines[0].find(bad.must_mention), std::string::npos) << lines[0];
+  }
+}
+
+// A stage whose memory estimate exceeds --max-memory is refused before it starts, with one line
+// naming the file, the stage and both figures, and nothing is written.
+TEST_F(BadInputTable, EveryStageOverItsMemoryBudgetIsRefusedNamingTheStage) {
+  const fs::path& d = *dir_;
+  const std::string scene = (d / "good.kdscene").string(), tree = (d / "good.kdtree").string();
+  struct Case {
+    std::vector<std::string> argv;
+    std::string file, stage, output;
+  };
+  const std::vector<Case> cases = {
+      {{tool_path("kdconvert"), (d / "quad.obj").string(), (d / "budget.kdscene").string()}, "quad.obj",
+       "importing it", "budget.kdscene"},
+      {{tool_path("kdbuild"), scene, (d / "budget.kdtree").string()}, "good.kdscene", "building its tree",
+       "budget.kdtree"},
+      {{tool_path("kdrender"), scene, tree, "--width", "4", "--height", "4", "--spp", "1", "-o",
+        (d / "budget.exr").string()},
+       "good.kdscene", "rendering it", "budget.exr"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.argv[0]);
+    std::vector<std::string> argv = c.argv;
+    argv.insert(argv.end(), {"--max-memory", "100"});  // bytes: less than any stage needs
+    const auto refused = run_process(argv, 120);
+    ASSERT_TRUE(refused.exited) << refused.err;
+    EXPECT_EQ(refused.exit_code, 1);
+    EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+    for (const std::string& part :
+         std::vector<std::string>{c.file, c.stage + " needs about ", "memory budget of 100 bytes (--max-memory)"})
+      EXPECT_NE(refused.err.find(part), std::string::npos) << part << " in: " << refused.err;
+    EXPECT_FALSE(fs::exists(d / c.output));
+    argv.back() = "0";  // no limit
+    const auto unlimited = run_process(argv, 300);
+    EXPECT_TRUE(unlimited.exited && unlimited.exit_code == 0) << unlimited.err;
+    EXPECT_TRUE(fs::exists(d / c.output));
   }
 }
 

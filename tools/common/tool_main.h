@@ -10,6 +10,7 @@
 #pragma once
 
 #include <kdray/error.h>
+#include <kdray/memory_budget.h>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -93,6 +94,16 @@ int run(CLI::App& app, int argc, char** argv, Body&& body) {
     print_error(tool_name, error.what());
   }
   return kExitFailure;
+}
+
+// --max-memory SIZE (bytes, or with a unit: 512M, 4G; 0: no limit), shared by the tools whose
+// stages check their memory estimate against it (kdray/memory_budget.h).
+inline void add_max_memory_option(CLI::App& app, uint64_t& bytes) {
+  bytes = kdray::default_memory_budget();
+  app.add_option("--max-memory", bytes, "Refuse a stage whose memory estimate exceeds SIZE (0: no limit)")
+      ->transform(CLI::AsSizeValue(false))
+      ->default_str(std::to_string(bytes >> 20) + "M (3/4 of this machine's memory)")
+      ->group("Run");
 }
 
 inline void print_json(const nlohmann::json& document) { std::cout << document.dump(2) << std::endl; }

@@ -14,6 +14,14 @@
 #include <cstdio>
 #include <string>
 
+namespace {
+
+// Peak memory of kdbuild per triangle, scene and tree included: 192 bytes measured for a
+// 720k-triangle grid, 228 for 1.6M triangles of dragons (4 references per triangle).
+constexpr uint64_t kBuildBytesPerTriangle = 320;
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using kdray::BuildSettings;
   CLI::App app{"kdbuild: build the SAH k-d tree of a .kdscene and write it as a .kdtree"};
@@ -48,6 +56,8 @@ int main(int argc, char** argv) {
       ->needs(cache_option)->check(CLI::PositiveNumber)->group("Cache");
   app.add_option("--threads", threads, "Build threads; 0: all cores (the tree is the same for any count)")
       ->capture_default_str()->group("Run");
+  uint64_t max_memory = 0;
+  kdray::tool::add_max_memory_option(app, max_memory);
   app.callback([&] {
     if (tree_option->count() == 0 && cache_option->count() == 0) throw CLI::RequiredError("OUTPUT (or --cache DIR)");
   });
@@ -61,6 +71,8 @@ int main(int argc, char** argv) {
     const kdray::Scene scene = kdray::read_scene(scene_path);
     report.scene_hash = scene.content_hash;
     report.load_seconds = kdbuild::seconds_since(start);
+    kdray::check_memory_estimate(scene_path, "building its tree",
+                                 kBuildBytesPerTriangle * scene.triangle_count(), max_memory);
 
     kdray::tool::ProgressBar progress("kdbuild", !output.quiet);
     const kdray::BuildControl control{threads, [&](double fraction) { progress.update(fraction); }, &report.phases};

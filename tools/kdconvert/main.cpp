@@ -94,6 +94,7 @@ int main(int argc, char** argv) {
   app.add_option("--camera", options.camera, "Asset camera (name or index) to make the scene's first camera")
       ->group("Import")
       ->default_str("the asset's first, else one framing the bounding box");
+  kdray::tool::add_max_memory_option(app, options.max_memory);
 
   return kdray::tool::run(app, argc, argv, [&] {
     const auto start = std::chrono::steady_clock::now();

@@ -22,6 +22,7 @@
 #include <tool_main.h>
 
 #include <chrono>
+#include <filesystem>
 #include <optional>
 #include <utility>
 #include <cstdio>
@@ -41,6 +42,7 @@ struct Options {
   bool resume = false;
   kdray::tool::OutputFlags flags;
   kdrender::FrameOptions frame;  // a single render's frame, or the defaults of every jobs line
+  uint64_t max_memory = 0;
 };
 
 void add_options(CLI::App& app, Options& o) {
@@ -62,6 +64,7 @@ void add_options(CLI::App& app, Options& o) {
       ->group("Batch");
   app.add_flag("--resume", o.resume, "With --jobs: skip frames whose output is already present and complete")
       ->group("Batch");
+  kdray::tool::add_max_memory_option(app, o.max_memory);
 }
 
 // Merges the sample ranges given in any order; with --spp (and --sample-offset) they must cover
@@ -86,10 +89,31 @@ int merge(const Options& o, bool range_given) {
   return kExitOk;
 }
 
+// Peak memory of a render: the scene and the tree are held by the host and again by the
+// OpenCL device (host memory on PoCL), and each film channel keeps exact sums, means and the
+// device's accumulators. Measured: see RELIABILITY.md (Resource limits).
+constexpr uint64_t kRenderBytesPerInputByte = 3;
+constexpr uint64_t kRenderBytesPerPixelChannel = 32;
+
+uint64_t estimated_render_bytes(const Options& o, const kdray::RenderSettings& s) {
+  const uint64_t channels = 3 + (s.aov_albedo ? 3 : 0) + (s.aov_normal ? 3 : 0) + (s.aov_depth ? 1 : 0);
+  auto size_of = [](const std::string& path) {  // a missing file is reported by its reader
+    std::error_code error;
+    const uint64_t size = std::filesystem::file_size(path, error);
+    return error ? 0 : size;
+  };
+  return kRenderBytesPerInputByte * (size_of(o.scene_path) + size_of(o.tree_path)) +
+         kRenderBytesPerPixelChannel * uint64_t(s.width) * s.height * channels;
+}
+
 int render(const Options& o) {
   kdrender::EnvironmentCache environments;
   kdrender::Frame frame;
   if (o.jobs_path.empty()) frame = kdrender::resolve_frame(o.frame, environments);
+  // A batch is checked against its defaults; each line's size is its own.
+  kdray::check_memory_estimate(o.scene_path, "rendering it",
+                               estimated_render_bytes(o, o.jobs_path.empty() ? frame.settings : o.frame.settings),
+                               o.max_memory);
   auto load_start = Clock::now();
   kdray::Scene scene = kdray::read_scene(o.scene_path);
   kdray::KdTree tree = kdray::tree_for_scene(scene, o.scene_path, o.tree_path, o.cache_folder, [](const std::string& line) {

@@ -17,7 +17,9 @@ struct ImportOptions {
   float scale = 1.0f;
   UpAxis up_axis = UpAxis::Y;
   std::string camera;  // name or index of the asset camera to put first; empty: the asset's first
-  uint64_t max_memory = 0;  // bytes an importer run in its own process may use; 0: no limit
+  // Memory budget in bytes (0: none): an import whose estimate exceeds it is refused, and an
+  // importer run in its own process cannot allocate beyond it.
+  uint64_t max_memory = 0;
 };
 
 // Throws kdray::Error naming `path` when the file cannot be read or holds no triangles.

@@ -11,6 +11,7 @@
 #include "pt_lights.h"
 #include "pt_material.h"
 #include "pt_rng.h"
+#include "pt_spherical_triangle.h"
 #include "pt_types.h"
 
 /* Russian roulette from this bounce on, surviving with probability min(sqrt(max throughput), 1):
@@ -145,6 +146,8 @@ inline uint pt_pick_light(__global const PtLight* lights, uint count, float* u) 
   return lights[lo].triangle;
 }
 
+/* Next-event estimation on the emissive triangles: picks one by power, then a direction towards
+ * it from the shading point p by solid angle or by area (kernels/pt_spherical_triangle.h). */
 inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const PtRenderParams* params,
                           const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng, float3 wo) {
   float2 pick_v = pt_path_sample2(path, params, PT_DIM_LIGHT_PICK);
@@ -153,13 +156,29 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const
   float3 q0 = pt_corner(&scene->kd, tri, 0);
   float3 q1 = pt_corner(&scene->kd, tri, 1);
   float3 q2 = pt_corner(&scene->kd, tri, 2);
-  float2 b = pt_sample_triangle(u, pick_v.y);
-  float3 y = q0 + b.x * (q1 - q0) + b.y * (q2 - q0);
-  float3 light_normal = normalize(cross(q1 - q0, q2 - q0));
-  float3 to_light = y - p;
-  float dist2 = dot(to_light, to_light);
-  if (!(dist2 > 0.0f)) return;
-  float3 wi = to_light * rsqrt(dist2);
+  float3 scaled_normal = cross(q1 - q0, q2 - q0);
+  float twice_area = length(scaled_normal);
+  float3 light_normal = scaled_normal / twice_area;
+  float3 a, b, c;
+  float solid_angle = pt_triangle_solid_angle(p, q0, q1, q2, &a, &b, &c);
+  float3 wi;
+  float dist2;
+  float2 bary = (float2)(0.0f); /* of the point on the light, for textured emission */
+  if (pt_use_spherical_sampling(solid_angle)) {
+    wi = pt_sample_spherical_triangle(a, b, c, solid_angle, u, pick_v.y);
+    float t = dot(q0 - p, light_normal) / dot(wi, light_normal);
+    if (!(t > 0.0f && t < INFINITY)) return;
+    dist2 = t * t;
+#ifdef KD_FEATURE_EMISSIVE_TEXTURE
+    bary = pt_barycentrics(p + t * wi - q0, q1 - q0, q2 - q0);
+#endif
+  } else {
+    bary = pt_sample_triangle(u, pick_v.y);
+    float3 to_light = q0 + bary.x * (q1 - q0) + bary.y * (q2 - q0) - p;
+    dist2 = dot(to_light, to_light);
+    if (!(dist2 > 0.0f)) return;
+    wi = to_light * rsqrt(dist2);
+  }
   float cos_light = -dot(light_normal, wi);
   if (cos_light <= 0.0f) return; /* emitters are one-sided */
   float bsdf_pdf;
@@ -169,14 +188,15 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const
   float3 emission = vload3(0, light.emission); /* what the emitter table's pdf is made of */
 #ifdef KD_FEATURE_EMISSIVE_TEXTURE
   float3 radiance = pt_textured_emission(&light, scene->uvs, scene->textures, scene->texels, scene->indices + 3 * tri,
-                                         b.x, b.y);
+                                         bary.x, bary.y);
 #else
   float3 radiance = emission;
 #endif
-  float light_pdf = PT_SELECT_TRIANGLES(params) * pt_luminance(emission) * params->light_area_pdf_scale * dist2 / cos_light;
+  float pick_per_area = PT_SELECT_TRIANGLES(params) * pt_luminance(emission) * params->light_area_pdf_scale;
+  float light_pdf = pt_triangle_light_pdf(pick_per_area, 0.5f * twice_area, solid_angle, dist2, cos_light);
   float weight = pt_mis_light(light_pdf, bsdf_pdf);
   float3 origin = pt_offset_origin(p, ng);
-  float3 target = pt_offset_origin(y, light_normal);
+  float3 target = pt_offset_origin(p + sqrt(dist2) * wi, light_normal);
   path->shadow_origin = (float4)(origin, 0.0f);
   path->shadow_span = (float4)(target - origin, 0.0f);
   path->shadow_contribution = (float4)(path->throughput.xyz * f_cos * radiance * (weight / light_pdf), 0.0f);
@@ -301,8 +321,13 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
 #endif
     float weight = 1.0f;
     if (path->bsdf_pdf > 0.0f) {
-      float light_pdf = PT_SELECT_TRIANGLES(params) * pt_luminance(emission) * params->light_area_pdf_scale *
-                        hit.t * hit.t / dot(ng, wo);
+      /* the density next-event estimation gives this direction, measured from the ray's origin
+       * (the previous shading point, moved off its surface by a few ulps) */
+      float3 a, b, c;
+      float solid_angle = pt_triangle_solid_angle(path->origin.xyz, p0, p1, p2, &a, &b, &c);
+      float pick_per_area = PT_SELECT_TRIANGLES(params) * pt_luminance(emission) * params->light_area_pdf_scale;
+      float light_pdf = pt_triangle_light_pdf(pick_per_area, 0.5f * length(cross(p1 - p0, p2 - p0)), solid_angle,
+                                              hit.t * hit.t, dot(ng, wo));
       weight = pt_mis_bsdf(path->bsdf_pdf, light_pdf);
     }
     path->radiance.xyz += beta * radiance * weight;

@@ -40,6 +40,14 @@ inline float2 pt_sample_triangle(float u1, float u2) {
   return (float2)(s * (1.0f - u2), s * u2);
 }
 
+/* Barycentrics of vertices 1 and 2 of the point q0 + d of the plane through q0 with edges e1, e2. */
+inline float2 pt_barycentrics(float3 d, float3 e1, float3 e2) {
+  float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
+  float p1 = dot(d, e1), p2 = dot(d, e2);
+  float inverse = 1.0f / (d11 * d22 - d12 * d12);
+  return (float2)((d22 * p1 - d12 * p2) * inverse, (d11 * p2 - d12 * p1) * inverse);
+}
+
 inline float pt_power_heuristic(float pdf_a, float pdf_b) {
   float a = pdf_a * pdf_a;
   float b = pdf_b * pdf_b;

@@ -1,4 +1,6 @@
-// The sample Cornell box converges without fireflies that do not average away.
+// The sample Cornell box converges without fireflies that do not average away, and its direct
+// light is the same with and without MIS (next-event estimation and BSDF samples that hit the
+// light weigh with the same light density, by solid angle or by area as the light subtends).
 #include "render_fixture.h"
 
 #include <kdray/import.h>
@@ -25,6 +27,21 @@ TEST(SampleCornellBox, SixteenSampleMeanIsWithinTwoPercentOfTheConvergedMean) {
   EXPECT_EQ(stats.nonfinite_values, 0u);
   EXPECT_GT(converged_mean, 0.05);
   EXPECT_NEAR(noisy_mean, converged_mean, 0.02 * converged_mean);
+}
+
+TEST(SampleCornellBox, DirectLightIsTheSameWithAndWithoutMis) {
+  Scene scene = import_scene(test::cornell_obj(), ImportOptions{});
+  KdTree tree = test::tree_for(scene);
+  RenderSettings settings = test::tiny_settings(48, 256);
+  settings.camera = test::cornell_camera();
+  settings.max_bounces = 1;  // the ceiling next to the light sees it at large solid angles
+  Film with = render(scene, tree, settings, DeviceSelection{});
+  settings.mis = false;
+  settings.seed = 1;
+  Film without = render(scene, tree, settings, DeviceSelection{});
+  // Each mean has about 0.2% noise; inconsistent weights (area density on one side, solid angle
+  // on the other) shift the MIS image by several percent.
+  EXPECT_NEAR(with.mean_radiance(), without.mean_radiance(), 0.01 * without.mean_radiance());
 }
 
 }  // namespace

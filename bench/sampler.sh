@@ -1,20 +1,26 @@
 #!/usr/bin/env bash
-# Sampler benchmark on the sample Cornell box, 256x256, 8 max bounces (as Cycles counts), 64 spp:
+# Sampler benchmark on the sample Cornell box (SCENE=cornell-box) or the Cornell box with the
+# Stanford bunny on its floor (SCENE=cornell-bunny, written by bench/cornell_bunny.py from the
+# corpus), 256x256, 8 max bounces (as Cycles counts), SPP (64) samples per pixel:
 #  1. kdrender --sampler sobol and --sampler independent, and, when the yardsticks are installed
 #     (/work/shared/yardsticks), Blender Cycles 3.4 and Mitsuba 3 (llvm_ad_rgb, multijitter,
 #     max_depth = bounces + 2), 2 threads each: whole processes timed side by side, interleaved
 #     in one loop, RUNS runs (run r uses seed r); prints the median wall time, the median kdrender
 #     render_seconds and the median relMSE against one converged reference, and error x time
-#     relative to Cycles (equal-error time ratio when error falls as 1/spp);
+#     relative to Cycles and to Mitsuba (equal-error time ratios when error falls as 1/spp);
 #  2. speed-vs-error CSVs for both samplers and one log-log plot (scripts/speed_vs_error.py).
 # The reference is REFERENCE (an EXR of the same view) or else a kdrender sobol render of
 # REFERENCE_SPP samples with seed 1000 (slow: about 16x the 64-spp render).
-# usage: bench/sampler.sh [BUILD_DIR] [OUT_DIR]   (env: RUNS=3 REFERENCE= REFERENCE_SPP=1024)
+# usage: bench/sampler.sh [BUILD_DIR] [OUT_DIR]
+#        (env: SCENE=cornell-box RUNS=3 SPP=64 REFERENCE= REFERENCE_SPP=1024 SERIES=1)
+# SERIES=0 skips the speed-vs-error series (part 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=$(realpath "${1:-build}")
 OUT=$(realpath -m "${2:-sampler-bench}")
 RUNS=${RUNS:-3}
+SCENE=${SCENE:-cornell-box}
+SERIES=${SERIES:-1}
 REFERENCE_SPP=${REFERENCE_SPP:-1024}
 YARD=/work/shared/yardsticks
 MITSUBA_PYTHON=${MITSUBA_PYTHON:-/work/venv-mitsuba/bin/python}
@@ -23,10 +29,14 @@ WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 KDRENDER=$BUILD/tools/kdrender/kdrender
 KDCOMPARE=$BUILD/tools/kdcompare/kdcompare
-OBJ=$PWD/samples/cornell-box.obj
+case $SCENE in
+  cornell-box) OBJ=$PWD/samples/cornell-box.obj ;;
+  cornell-bunny) bench/cornell_bunny.py "$WORK" > /dev/null && OBJ=$WORK/cornell-bunny.obj ;;
+  *) echo "sampler.sh: error: SCENE must be cornell-box or cornell-bunny, not '$SCENE'" >&2 && exit 2 ;;
+esac
 VIEW="--cam-pos 278,273,-800 --cam-target 278,273,0 --fov 39.3077"
 SIZE="--width 256 --height 256 --max-bounces 8"
-SPP=64
+SPP=${SPP:-64}
 export KDRAY_CACHE_DIR=$WORK/kdray-cache
 
 median() { sort -g | awk '{v[NR]=$1} END {print v[int((NR+1)/2)]}'; }
@@ -74,22 +84,26 @@ run() {
 }
 
 echo
-echo "== Cornell box, $SIZE, $SPP spp, 2 threads; median of $RUNS interleaved runs (seed = run)"
+echo "== $SCENE, $SIZE, $SPP spp, 2 threads; median of $RUNS interleaved runs (seed = run)"
 for ((r = 0; r < RUNS; ++r)); do
   for name in "${renderers[@]}"; do run "$name" "$r"; done
 done
 declare -A wall err
-printf '%-12s %-8s %-9s %-10s %s\n' renderer wall_s render_s relmse "error x wall / Cycles'"
+printf '%-12s %-8s %-9s %-10s %-24s %s\n' renderer wall_s render_s relmse "error x wall / Cycles'" \
+  "error x wall / Mitsuba's"
 for name in "${renderers[@]}"; do
   wall[$name]=$(cut -d' ' -f1 "$WORK/$name.txt" | median)
   err[$name]=$(cut -d' ' -f3 "$WORK/$name.txt" | median)
 done
 for name in "${renderers[@]}"; do
-  ratio=-
+  ratio=- mratio=-
   if ((have_cycles)); then ratio=$(awk "BEGIN {printf \"%.3f\", ${wall[$name]} * ${err[$name]} / (${wall[cycles]} * ${err[cycles]})}"); fi
-  printf '%-12s %-8.3f %-9.3f %-10.3e %s\n' "$name" "${wall[$name]}" "$(cut -d' ' -f2 "$WORK/$name.txt" | median)" \
-    "${err[$name]}" "$ratio"
+  if ((have_mitsuba)); then mratio=$(awk "BEGIN {printf \"%.3f\", ${wall[$name]} * ${err[$name]} / (${wall[mitsuba]} * ${err[mitsuba]})}"); fi
+  printf '%-12s %-8.3f %-9.3f %-10.3e %-24s %s\n' "$name" "${wall[$name]}" "$(cut -d' ' -f2 "$WORK/$name.txt" | median)" \
+    "${err[$name]}" "$ratio" "$mratio"
 done
+for name in "${renderers[@]}"; do echo "$name runs (wall render relmse): $(tr '\n' ';' < "$WORK/$name.txt")"; done
+((SERIES)) || exit 0
 
 echo
 echo "== speed vs error, both samplers: $OUT/sampler-{sobol,independent}.csv, $OUT/sampler.png"
@@ -98,7 +112,7 @@ for name in sobol independent; do
     --reference "$REFERENCE" --kdrender "$KDRENDER" --kdcompare "$KDCOMPARE" -- $VIEW --sampler "$name" > /dev/null
 done
 /usr/bin/python3 scripts/speed_vs_error.py plot "$OUT/sampler-sobol.csv" "$OUT/sampler-independent.csv" \
-  -o "$OUT/sampler.png" --title "Cornell box 256x256, 8 bounces: sobol vs independent"
+  -o "$OUT/sampler.png" --title "$SCENE 256x256, 8 bounces: sobol vs independent"
 for name in sobol independent; do
   /usr/bin/python3 -c "
 import csv, sys

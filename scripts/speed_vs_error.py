@@ -10,7 +10,8 @@
       kdrender reports, without loading or kernel builds), wall_seconds (cumulative wall-clock
       time of the kdrender runs, everything included) and kdcompare's overall metrics. Without
       --reference it renders its own, with --reference-spp samples and a different seed, and
-      says so in the CSV header.
+      says so in the CSV header. --sampler picks kdrender's sampler for the series only; the own
+      reference always uses the default one, so series of both samplers share one reference.
 
   speed_vs_error.py plot OUT.csv [MORE.csv ...] -o PLOT.png [--metric relmse]
       Log-log plot of error against seconds, one line per CSV, with a 1/t slope for comparison.
@@ -64,11 +65,13 @@ class Renderer:
         if args.device:
             self.common += ["--device", args.device]
         self.common += args.kdrender_args
+        self.series = ["--sampler", args.sampler] if args.sampler else []
 
-    def render(self, output, spp, offset, seed):
-        """Renders samples offset..offset+spp-1 to output; returns (render seconds, wall seconds)."""
-        report, wall = run_tool([self.kdrender, *self.common, "--spp", str(spp), "--sample-offset", str(offset),
-                                 "--seed", str(seed), "-o", output])
+    def render(self, output, spp, offset, seed, series=True):
+        """Renders samples offset..offset+spp-1 to output (with the series' sampler unless
+        series is False); returns (render seconds, wall seconds)."""
+        report, wall = run_tool([self.kdrender, *self.common, *(self.series if series else []), "--spp", str(spp),
+                                 "--sample-offset", str(offset), "--seed", str(seed), "-o", output])
         return float(report["render_seconds"]), wall
 
     def merge(self, first, second, output):
@@ -94,7 +97,7 @@ def own_reference(args, renderer, directory):
         print(f"speed_vs_error: reusing {path}", file=sys.stderr)
         return path, None
     print(f"speed_vs_error: rendering the reference, {args.reference_spp} spp ...", file=sys.stderr)
-    seconds, _ = renderer.render(path, args.reference_spp, 0, args.reference_seed)
+    seconds, _ = renderer.render(path, args.reference_spp, 0, args.reference_seed, series=False)
     return path, seconds
 
 
@@ -109,6 +112,7 @@ def command_run(args):
 
     header = [f"scene: {args.scene}", f"tree: {args.tree}",
               f"settings: {args.width}x{args.height}, max bounces {args.max_bounces}, seed {args.seed}, "
+              f"sampler {args.sampler or 'default'}, "
               f"spp 1..{args.max_spp} doubling, each step renders only the new samples and merges them",
               "seconds: cumulative kdrender render time; wall_seconds: cumulative wall-clock of the kdrender runs "
               "(scene load, kernel build and merges included)"]
@@ -210,6 +214,7 @@ def main():
     run.add_argument("--reference-dir", help="where the own reference is kept (default: beside the CSV)")
     run.add_argument("--keep-image", help="also write the final max-spp image here (EXR)")
     run.add_argument("--device", help="kdrender --device")
+    run.add_argument("--sampler", choices=["sobol", "independent"], help="kdrender --sampler of the series")
     run.add_argument("--kdrender", default=default_tool("kdrender"), help="kdrender executable")
     run.add_argument("--kdcompare", default=default_tool("kdcompare"), help="kdcompare executable")
     run.set_defaults(handler=command_run)

@@ -135,6 +135,31 @@ TEST_F(SpeedVsError, NamesAGivenReferenceAndPlots) {
   EXPECT_GT(fs::file_size(plot), 1000u);
 }
 
+TEST_F(SpeedVsError, SeriesOfBothSamplersShareOneOwnReference) {
+  const std::string sobol_csv = (directory_ / "sobol.csv").string(), independent_csv = (directory_ / "independent.csv").string();
+  const std::string final_image = (directory_ / "final.exr").string();
+  ASSERT_EQ(report(sobol_csv, "--reference-spp 16 --sampler sobol").exit_code, 0);
+  const ToolRun run = report(independent_csv, "--reference-spp 16 --sampler independent --keep-image " + shell_quoted(final_image));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const Csv csv = read_csv(independent_csv);
+  bool sampler_described = false, reference_reused = false;
+  for (const std::string& comment : csv.comments) {
+    sampler_described |= comment.find("sampler independent") != std::string::npos;
+    reference_reused |= comment.find("reused from an earlier run") != std::string::npos;
+  }
+  EXPECT_TRUE(sampler_described);
+  EXPECT_TRUE(reference_reused) << "the second series renders no reference of its own";
+  // The series renders with the sampler asked for: its 4-spp image is one independent render's bytes.
+  const std::string direct = (directory_ / "direct.exr").string();
+  ASSERT_EQ(run_command(tool("kdrender") + " " + shell_quoted(scene_) + " " + shell_quoted(tree_) + " -o " + shell_quoted(direct) +
+                        " --width 8 --height 8 --spp 4 --seed 0 --sampler independent --quiet" + kCornellView)
+                .exit_code,
+            0);
+  EXPECT_EQ(run_command(tool("kdcompare") + " " + shell_quoted(final_image) + " " + shell_quoted(direct) + " --threshold max_abs=0")
+                .exit_code,
+            0);
+}
+
 TEST_F(SpeedVsError, RefusesAMaxSppThatIsNotAPowerOfTwo) {
   const ToolRun run = run_command(kScript + " run " + shell_quoted(scene_) + " " + shell_quoted(tree_) + " --csv " +
                                   shell_quoted((directory_ / "x.csv").string()) + " --max-spp 3 2>&1");

@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""Writes the Cornell box with the Stanford bunny on its floor, as OBJ + MTL, for the benchmarks.
+
+The sample Cornell box (samples/cornell-box.obj, millimetres) with the corpus's Stanford bunny
+(bunny/stanford-bunny.obj, 69,451 triangles, no normals, so every renderer shades it flat), scaled
+x1000 to 154 mm tall, its lowest point on the floor (y = 0), in the free front-left part of the
+floor (centre x = 430, z = 130; the Cornell camera looks along +z, so +x is image left), in the
+walls' white paint. The output is the same bytes for the same inputs.
+
+usage: bench/cornell_bunny.py OUT_DIR [CORPUS_DIR]   writes OUT_DIR/cornell-bunny.obj and
+       OUT_DIR/cornell-box.mtl (CORPUS_DIR defaults to ../shared/corpus beside the repository)
+"""
+import os
+import shutil
+import sys
+
+SCALE = 1000.0
+CENTRE_X, CENTRE_Z = 430.0, 130.0
+
+
+def main():
+    if len(sys.argv) not in (2, 3):
+        sys.exit(__doc__.strip().splitlines()[-2].strip())
+    repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    out = sys.argv[1]
+    corpus = sys.argv[2] if len(sys.argv) == 3 else os.path.join(repo, "..", "shared", "corpus")
+    bunny_path = os.path.join(corpus, "bunny", "stanford-bunny.obj")
+    if not os.path.isfile(bunny_path):
+        sys.exit(f"cornell_bunny.py: error: {bunny_path}: not found (the corpus is needed)")
+    with open(os.path.join(repo, "samples", "cornell-box.obj")) as f:
+        box = f.read()
+    box_vertices = sum(1 for line in box.splitlines() if line.startswith("v "))
+
+    vertices, faces = [], []
+    with open(bunny_path) as f:
+        for line in f:
+            parts = line.split()
+            if not parts:
+                continue
+            if parts[0] == "v":
+                vertices.append([float(x) * SCALE for x in parts[1:4]])
+            elif parts[0] == "f":
+                faces.append([int(p.split("/")[0]) for p in parts[1:]])
+    lo = [min(v[i] for v in vertices) for i in range(3)]
+    hi = [max(v[i] for v in vertices) for i in range(3)]
+    shift = [CENTRE_X - 0.5 * (lo[0] + hi[0]), -lo[1], CENTRE_Z - 0.5 * (lo[2] + hi[2])]
+
+    os.makedirs(out, exist_ok=True)
+    shutil.copyfile(os.path.join(repo, "samples", "cornell-box.mtl"), os.path.join(out, "cornell-box.mtl"))
+    lines = [box.rstrip("\n"), "", "# The Stanford bunny (Stanford 3D Scanning Repository, via the corpus), placed by",
+             "# bench/cornell_bunny.py: x1000, lowest point on the floor, centred at x 430, z 130.", "o bunny",
+             "usemtl white"]
+    lines += ["v %.4f %.4f %.4f" % tuple(v[i] + shift[i] for i in range(3)) for v in vertices]
+    lines += ["f " + " ".join(str(i + box_vertices if i > 0 else i) for i in face) for face in faces]
+    path = os.path.join(out, "cornell-bunny.obj")
+    with open(path + ".tmp", "w") as f:
+        f.write("\n".join(lines) + "\n")
+    os.replace(path + ".tmp", path)
+    print(f"{path}: {len(faces)} bunny triangles, bounds x {lo[0] + shift[0]:.1f}..{hi[0] + shift[0]:.1f}, "
+          f"y 0..{hi[1] - lo[1]:.1f}, z {lo[2] + shift[2]:.1f}..{hi[2] + shift[2]:.1f}")
+
+
+if __name__ == "__main__":
+    main()

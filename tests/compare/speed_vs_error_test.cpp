@@ -140,7 +140,7 @@ TEST_F(SpeedVsError, SeriesOfBothSamplersShareOneOwnReference) {
   const std::string final_image = (directory_ / "final.exr").string();
   ASSERT_EQ(report(sobol_csv, "--reference-spp 16 --sampler sobol").exit_code, 0);
   const ToolRun run = report(independent_csv, "--reference-spp 16 --sampler independent --keep-image " + shell_quoted(final_image));
-  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_EQ(run.exit_code, 0) << run.out;
   const Csv csv = read_csv(independent_csv);
   bool sampler_described = false, reference_reused = false;
   for (const std::string& comment : csv.comments) {

@@ -95,7 +95,9 @@ class InterruptedWrite : public ::testing::Test {
     for (int attempt = 0; attempt < kAttempts; ++attempt) {
       const auto result = run_process(command, moment(random));
       interrupted += result.timed_out;
-      if (!result.timed_out) EXPECT_EQ(result.exit_code, 0) << result.err;
+      if (!result.timed_out) {
+        EXPECT_EQ(result.exit_code, 0) << result.err;
+      }
       const bool intact = fs::exists(target) && (bytes_of(target) == previous || is_new(target));
       torn_or_missing += !intact;
       EXPECT_TRUE(intact) << target << " after a kill at attempt " << attempt;

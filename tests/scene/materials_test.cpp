@@ -121,7 +121,7 @@ class MaterialsFile : public ::testing::Test {
   std::filesystem::path dir_;
 };
 
-TEST_F(MaterialsFile, VersionThreeFieldsRoundTrip) {
+TEST_F(MaterialsFile, MaterialFieldsRoundTripInTheCurrentVersion) {
   Scene scene = test::make_quad_scene(true, true, true);
   Material& m = scene.materials.front();
   m.type = MaterialType::MetallicRoughness;
@@ -133,9 +133,9 @@ TEST_F(MaterialsFile, VersionThreeFieldsRoundTrip) {
   m.normal_texture = 0;
   m.emissive_texture = 0;
   scene.content_hash = compute_content_hash(scene);
-  write_scene(path("v3.kdscene"), scene);
-  EXPECT_EQ(peek_scene(path("v3.kdscene")).version, 3u);
-  const Material& r = read_scene(path("v3.kdscene")).materials.front();
+  write_scene(path("current.kdscene"), scene);
+  EXPECT_EQ(peek_scene(path("current.kdscene")).version, format::kSceneVersion);
+  const Material& r = read_scene(path("current.kdscene")).materials.front();
   EXPECT_EQ(r.type, MaterialType::MetallicRoughness);
   EXPECT_EQ(r.metallic, 0.7f);
   EXPECT_EQ(r.alpha, 0.25f);

@@ -3,24 +3,16 @@
 #include <kdray/container_file.h>
 
 #include "process_stats.h"
+#include "text_format.h"
 #include "tree_json.h"
 
-#include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 
 namespace kdbuild {
 namespace {
 
-std::string format(const char* pattern, ...) __attribute__((format(printf, 1, 2)));
-std::string format(const char* pattern, ...) {
-  char buffer[1024];
-  va_list arguments;
-  va_start(arguments, pattern);
-  std::vsnprintf(buffer, sizeof buffer, pattern, arguments);
-  va_end(arguments);
-  return buffer;
-}
+using kdray::tool::format;
 
 // The written tree's size: the output's, or the cache entry's when there is no output.
 uint64_t tree_bytes(const Report& r) {

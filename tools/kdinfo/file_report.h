@@ -5,8 +5,9 @@
 
 #include <kdray/error.h>
 
+#include "text_format.h"
+
 #include <chrono>
-#include <cstdarg>
 #include <cstdio>
 #include <string>
 
@@ -19,16 +20,7 @@ struct FileReport {
   std::string problem;  // when not intact and the cause is known: "<file>: <what>", for stderr
 };
 
-// printf into a std::string, for the human-readable reports.
-inline std::string format(const char* pattern, ...) __attribute__((format(printf, 1, 2)));
-inline std::string format(const char* pattern, ...) {
-  char buffer[1024];
-  va_list arguments;
-  va_start(arguments, pattern);
-  std::vsnprintf(buffer, sizeof buffer, pattern, arguments);
-  va_end(arguments);
-  return buffer;
-}
+using kdray::tool::format;
 
 // Loads the whole file with `load` (which reads and verifies it), times that, and adds the
 // facts `describe` draws from the loaded object, the load time and the verdict to `report`;

@@ -2,18 +2,19 @@
 # Submits a sharded kdrender to Slurm: a job array with one task per sample range
 # (render-shard.sh), and a merge job (merge-shards.sh) that runs when every task succeeded and
 # merges the shards exactly into OUT.exr (kdrender --merge refuses missing or foreign shards).
-# SCENE, TREE and OUT must be on storage every node sees (the tree, e.g., from a shared cache
-# directory filled by kdbuild). Prints the array's and the merge job's ids.
+# SCENE, TREE and OUT must be on storage every node sees; TREE is a .kdtree or a tree cache folder
+# (kdbuild --cache DIR SCENE fills it once; each task then finds the tree there by the scene's
+# geometry). Prints the array's and the merge job's ids.
 #
 #   submit-render.sh SCENE TREE OUT.exr SHARDS SPP [kdrender options for every shard...]
-#   submit-render.sh /shared/s.kdscene /shared/cache/s.kdtree /shared/out/s.exr 16 1024 --width 1920 --height 1080
+#   submit-render.sh /shared/s.kdscene /shared/tree-cache /shared/out/s.exr 16 1024 --width 1920 --height 1080
 #
 # Environment: KDRENDER (default: kdrender on PATH); SBATCH_OPTIONS, extra sbatch options for
 # both jobs (partition, account, time limit, ...).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 if [ $# -lt 5 ]; then
-  sed -n '2,13p' "$0" >&2
+  sed -n '2,14p' "$0" >&2
   exit 2
 fi
 scene=$(realpath "$1") tree=$(realpath "$2") out=$(realpath -m "$3") shards=$4 spp=$5

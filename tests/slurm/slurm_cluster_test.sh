@@ -115,13 +115,15 @@ done
 [ "$(sinfo -h -o %t 2>/dev/null)" = idle ] || cannot_start "the node did not come up idle ($(sinfo -h -o %t 2>&1))"
 echo "slurm_cluster_test: cluster up"
 
-# The sharded render: 10 samples in 4 shards (3, 3, 2, 2), merged; and the same render whole.
+# The sharded render: 10 samples in 4 shards (3, 3, 2, 2), the tree from a cache folder, merged;
+# and the same render whole, from the tree file.
 mkdir -p "$T/work"
 cd "$T/work"
 "$kdconvert" "$source/samples/cornell-box.obj" box.kdscene --quiet
 "$kdbuild" box.kdscene box.kdtree --quiet > /dev/null
+"$kdbuild" --cache tree-cache box.kdscene --quiet > /dev/null  # the shards find the tree here
 view=(--width 24 --height 20 --cam-pos 278,273,-800 --cam-target 278,273,0 --fov 39.3077 --seed 3)
-ids=$(KDRENDER=$kdrender "$source/samples/slurm/submit-render.sh" box.kdscene box.kdtree out.exr 4 10 "${view[@]}")
+ids=$(KDRENDER=$kdrender "$source/samples/slurm/submit-render.sh" box.kdscene tree-cache out.exr 4 10 "${view[@]}")
 echo "slurm_cluster_test: submitted $ids"
 merge=${ids##* }
 "$kdrender" box.kdscene box.kdtree -o single.exr --spp 10 "${view[@]}" --quiet

@@ -108,7 +108,9 @@ TEST(EnvironmentLight, DirectionToPixelMappingIsMitsubas) {
   Environment env = test::coordinate_environment(8, 4);
   auto expect = [&](const Vec3& d, float fx, float fy, const Vec3& up = {0, 1, 0}) {
     Vec3 v = seen(env, d, up);
-    if (fx >= 0) EXPECT_NEAR(v.x, fx, 0.01) << d.x << "," << d.y << "," << d.z;
+    if (fx >= 0) {
+      EXPECT_NEAR(v.x, fx, 0.01) << d.x << "," << d.y << "," << d.z;
+    }
     EXPECT_NEAR(v.y, fy, 0.01) << d.x << "," << d.y << "," << d.z;
   };
   expect({1, 0, 0}, 1.5f, 1.5f);    // u = 0.25

@@ -135,7 +135,8 @@ TEST_F(MaterialsFile, MaterialFieldsRoundTripInTheCurrentVersion) {
   scene.content_hash = compute_content_hash(scene);
   write_scene(path("current.kdscene"), scene);
   EXPECT_EQ(peek_scene(path("current.kdscene")).version, format::kSceneVersion);
-  const Material& r = read_scene(path("current.kdscene")).materials.front();
+  const Scene read = read_scene(path("current.kdscene"));
+  const Material& r = read.materials.front();
   EXPECT_EQ(r.type, MaterialType::MetallicRoughness);
   EXPECT_EQ(r.metallic, 0.7f);
   EXPECT_EQ(r.alpha, 0.25f);

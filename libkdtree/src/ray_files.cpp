@@ -1,6 +1,7 @@
 #include <kdray/atomic_file.h>
 #include <kdray/error.h>
 #include <kdray/ray_files.h>
+#include <kdray/util.h>
 
 #include <cerrno>
 #include <cstring>
@@ -18,12 +19,9 @@ static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "ray and hit files are 
 template <typename Record>
 std::vector<Record> read_records(const std::string& path, const char* what) {
   // O_NONBLOCK so a FIFO given by mistake is rejected below instead of waiting for a writer.
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  const FileDescriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK));
+  const int fd = file.get();
   if (fd < 0) throw Error(path, std::string("cannot open: ") + std::strerror(errno));
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
   struct stat status {};
   if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode)) throw Error(path, "not a regular file");
   const uint64_t size = uint64_t(status.st_size);

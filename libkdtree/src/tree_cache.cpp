@@ -3,6 +3,7 @@
 #include <kdray/atomic_file.h>
 #include <kdray/container_file.h>
 #include <kdray/error.h>
+#include <kdray/util.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -25,30 +26,16 @@ namespace fs = std::filesystem;
 constexpr const char* kTreeExtension = ".kdtree";
 constexpr const char* kScenesExtension = ".scenes";
 
-class Descriptor {
- public:
-  explicit Descriptor(int fd) : fd_(fd) {}
-  ~Descriptor() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  Descriptor(const Descriptor&) = delete;
-  Descriptor& operator=(const Descriptor&) = delete;
-  int get() const { return fd_; }
-
- private:
-  int fd_;
-};
-
 // Copies `source` into the new file `destination`: a reflink (FICLONE) where the file system
 // shares blocks between files, else the kernel copies the bytes. Never a hard link. False when
 // the source does not exist (a concurrent eviction removed it).
 bool clone_or_copy(const std::string& source, const std::string& destination) {
-  Descriptor in(::open(source.c_str(), O_RDONLY | O_CLOEXEC));
+  FileDescriptor in(::open(source.c_str(), O_RDONLY | O_CLOEXEC));
   if (in.get() < 0) {
     if (errno == ENOENT) return false;
     throw Error(source, std::string("cannot open: ") + std::strerror(errno));
   }
-  Descriptor out(::open(destination.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
+  FileDescriptor out(::open(destination.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
   if (out.get() < 0) throw Error(destination, std::string("cannot create: ") + std::strerror(errno));
   if (::ioctl(out.get(), FICLONE, in.get()) == 0) return true;
   struct stat status {};
@@ -116,6 +103,10 @@ TreeCache::TreeCache(std::string folder, CacheWarning warn) : folder_(std::move(
 
 std::string TreeCache::tree_path(uint64_t key) const { return (fs::path(folder_) / (hash_hex(key) + kTreeExtension)).string(); }
 
+std::string TreeCache::scenes_path(uint64_t key) const {
+  return (fs::path(folder_) / (hash_hex(key) + kScenesExtension)).string();
+}
+
 std::optional<KdTree> TreeCache::load(uint64_t key, const std::string& scene_path) {
   const std::string path = tree_path(key);
   if (!fs::exists(path)) return std::nullopt;
@@ -161,20 +152,19 @@ void TreeCache::mark_used(uint64_t key, const std::string& scene_path) {
   ::utimensat(AT_FDCWD, path.c_str(), times, 0);  // an entry evicted meanwhile has no last use to keep
   // Two processes adding different scenes at once may keep only one of them: the list is a
   // record for people (kdinfo), the key alone decides hits.
-  const std::string scenes_path = (fs::path(folder_) / (hash_hex(key) + kScenesExtension)).string();
-  std::vector<std::string> scenes = read_lines(scenes_path);
+  std::vector<std::string> scenes = read_lines(scenes_path(key));
   const std::string scene = absolute(scene_path);
   if (std::find(scenes.begin(), scenes.end(), scene) != scenes.end()) return;
   std::string text;
   for (const std::string& line : scenes) text += line + "\n";
   text += scene + "\n";
-  write_file_atomically(scenes_path, text.data(), text.size());
+  write_file_atomically(scenes_path(key), text.data(), text.size());
 }
 
 void TreeCache::remove_damaged(uint64_t key, const std::string& problem) {
   if (warn_) warn_(tree_path(key) + ": damaged cache entry removed, the tree is built again (" + problem + ")");
   ::unlink(tree_path(key).c_str());
-  ::unlink((fs::path(folder_) / (hash_hex(key) + kScenesExtension)).c_str());
+  ::unlink(scenes_path(key).c_str());
 }
 
 std::vector<CacheEntry> TreeCache::entries() const {
@@ -189,9 +179,9 @@ std::vector<CacheEntry> TreeCache::entries() const {
     entry.tree_path = it->path().string();
     entry.last_use = status.st_mtim;
     entry.bytes = uint64_t(status.st_size);
-    const std::string scenes_path = (fs::path(folder_) / (hash_hex(*key) + kScenesExtension)).string();
-    if (::stat(scenes_path.c_str(), &status) == 0) entry.bytes += uint64_t(status.st_size);
-    entry.scenes = read_lines(scenes_path);
+    const std::string scenes = scenes_path(*key);
+    if (::stat(scenes.c_str(), &status) == 0) entry.bytes += uint64_t(status.st_size);
+    entry.scenes = read_lines(scenes);
     list.push_back(std::move(entry));
   }
   std::sort(list.begin(), list.end(), [](const CacheEntry& a, const CacheEntry& b) {
@@ -208,7 +198,7 @@ std::vector<CacheEntry> TreeCache::evict(uint64_t max_bytes, uint64_t keep) {
   for (auto it = list.rbegin(); it != list.rend() && total > max_bytes; ++it) {
     if (it->key == keep) continue;
     ::unlink(it->tree_path.c_str());
-    ::unlink((fs::path(folder_) / (hash_hex(it->key) + kScenesExtension)).c_str());
+    ::unlink(scenes_path(it->key).c_str());
     total -= it->bytes;
     removed.push_back(*it);
   }

@@ -1,6 +1,7 @@
 #include <kdray/atomic_file.h>
 #include <kdray/container_file.h>
 #include <kdray/error.h>
+#include <kdray/util.h>
 
 #include <xxhash.h>
 
@@ -20,25 +21,6 @@ namespace {
 uint64_t align_up(uint64_t value, uint64_t alignment) {
   return (value + alignment - 1) / alignment * alignment;
 }
-
-class FileDescriptor {
- public:
-  explicit FileDescriptor(int fd) : fd_(fd) {}
-  ~FileDescriptor() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  FileDescriptor(const FileDescriptor&) = delete;
-  FileDescriptor& operator=(const FileDescriptor&) = delete;
-  int get() const { return fd_; }
-  int release() {
-    int fd = fd_;
-    fd_ = -1;
-    return fd;
-  }
-
- private:
-  int fd_;
-};
 
 void write_all(int fd, const void* data, uint64_t size, const std::string& path) {
   const char* bytes = static_cast<const char*>(data);

@@ -61,6 +61,7 @@ class TreeCache {
   std::vector<CacheEntry> evict(uint64_t max_bytes, uint64_t keep);
 
  private:
+  std::string scenes_path(uint64_t key) const;  // KEY.scenes: the scenes an entry served
   void mark_used(uint64_t key, const std::string& scene_path);
   void remove_damaged(uint64_t key, const std::string& problem);
 

@@ -1,5 +1,5 @@
 // Small helpers that every library and tool needs, defined once: hexadecimal hashes,
-// lower-cased file extensions and the sRGB transfer function.
+// lower-cased file extensions, the sRGB transfer function and an owned file descriptor.
 #pragma once
 
 #include <algorithm>
@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+
+#include <unistd.h>
 
 namespace kdray {
 
@@ -37,5 +39,25 @@ inline float linear_to_srgb(float linear) {
 inline float srgb_to_linear(float encoded) {
   return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
 }
+
+// A POSIX file descriptor closed when it goes out of scope (negative: none).
+class FileDescriptor {
+ public:
+  explicit FileDescriptor(int fd) : fd_(fd) {}
+  ~FileDescriptor() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  FileDescriptor(const FileDescriptor&) = delete;
+  FileDescriptor& operator=(const FileDescriptor&) = delete;
+  int get() const { return fd_; }
+  int release() {
+    const int fd = fd_;
+    fd_ = -1;
+    return fd;
+  }
+
+ private:
+  int fd_;
+};
 
 }  // namespace kdray

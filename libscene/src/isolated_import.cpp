@@ -5,6 +5,7 @@
 #include "importers.h"
 
 #include <kdray/error.h>
+#include <kdray/memory_budget.h>
 #include <kdray/scene_file.h>
 
 #include <cerrno>
@@ -22,6 +23,9 @@
 
 namespace kdray {
 namespace {
+
+// The child's exit status when the importer ran out of its memory budget (1: any other error).
+constexpr int kExitOverMemoryBudget = 3;
 
 void write_fully(int fd, const std::string& text) {
   for (size_t done = 0; done < text.size();) {
@@ -109,9 +113,10 @@ Scene import_in_child_process(const std::string& path, Scene (*importer)(const s
     try {
       write_scene(handover, importer(path));
     } catch (const std::bad_alloc&) {
-      write_fully(message_pipe[1], path + ": importing it with " + importer_name + " needs more than --max-memory (" +
-                                       std::to_string(max_memory >> 20) + " MiB)");
-      status = 1;
+      write_fully(message_pipe[1], path + ": importing it with " + importer_name +
+                                       " needs more than the memory budget (" + std::to_string(max_memory >> 20) +
+                                       " MiB)");
+      status = kExitOverMemoryBudget;
     } catch (const std::exception& error) {
       // kdray::Error messages already name the file; anything else is said as it is.
       write_fully(message_pipe[1], dynamic_cast<const Error*>(&error) ? error.what() : path + ": " + error.what());
@@ -135,6 +140,8 @@ Scene import_in_child_process(const std::string& path, Scene (*importer)(const s
     return read_scene(handover);
   }
   std::remove(handover.c_str());
+  if (WIFEXITED(status) && WEXITSTATUS(status) == kExitOverMemoryBudget && !message.empty())
+    throw MemoryBudgetError("", message);
   if (WIFEXITED(status) && !message.empty()) throw Error("", message);
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);

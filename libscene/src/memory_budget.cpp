@@ -1,4 +1,3 @@
-#include <kdray/error.h>
 #include <kdray/memory_budget.h>
 
 #include <unistd.h>
@@ -23,8 +22,8 @@ uint64_t default_memory_budget() { return physical_memory_bytes() / 4 * 3; }
 
 void check_memory_estimate(const std::string& path, const std::string& stage, uint64_t estimate, uint64_t budget) {
   if (budget == 0 || estimate <= budget) return;
-  throw Error(path, stage + " needs about " + readable(estimate) + ", more than the memory budget of " +
-                        readable(budget) + " (--max-memory)");
+  throw MemoryBudgetError(path, stage + " needs about " + readable(estimate) + ", more than the memory budget of " +
+                                    readable(budget));
 }
 
 }  // namespace kdray

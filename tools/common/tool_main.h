@@ -86,6 +86,8 @@ int run(CLI::App& app, int argc, char** argv, Body&& body) {
   } catch (const CLI::ValidationError& error) {
     print_error(tool_name, std::string(error.what()) + " (see --help)");
     return kExitUsage;
+  } catch (const kdray::MemoryBudgetError& error) {
+    print_error(tool_name, std::string(error.what()) + " (--max-memory)");
   } catch (const kdray::Error& error) {
     print_error(tool_name, error.what());
   } catch (const std::bad_alloc&) {

@@ -55,10 +55,6 @@ void set_camera(PtRenderParams& params, const Camera& camera, uint32_t width, ui
   store(params.cam_up, scale(up, tan_half));
 }
 
-uint32_t film_channel_count(const RenderSettings& s) {
-  return 3 + (s.aov_albedo ? 3 : 0) + (s.aov_normal ? 3 : 0) + (s.aov_depth ? 1 : 0);
-}
-
 std::vector<std::string> film_channel_names(const RenderSettings& s) {
   std::vector<std::string> names = {"R", "G", "B"};
   if (s.aov_albedo) names.insert(names.end(), {"albedo.R", "albedo.G", "albedo.B"});
@@ -101,6 +97,10 @@ void set_light_selection(PtRenderParams& params, const DeviceScene& device, cons
 }
 
 }  // namespace
+
+uint32_t film_channel_count(const RenderSettings& s) {
+  return 3 + (s.aov_albedo ? 3 : 0) + (s.aov_normal ? 3 : 0) + (s.aov_depth ? 1 : 0);
+}
 
 uint64_t tree_content_hash(const KdTree& tree) {
   XXH3_state_t* state = XXH3_createState();

@@ -96,14 +96,13 @@ constexpr uint64_t kRenderBytesPerInputByte = 3;
 constexpr uint64_t kRenderBytesPerPixelChannel = 32;
 
 uint64_t estimated_render_bytes(const Options& o, const kdray::RenderSettings& s) {
-  const uint64_t channels = 3 + (s.aov_albedo ? 3 : 0) + (s.aov_normal ? 3 : 0) + (s.aov_depth ? 1 : 0);
   auto size_of = [](const std::string& path) {  // a missing file is reported by its reader
     std::error_code error;
     const uint64_t size = std::filesystem::file_size(path, error);
     return error ? 0 : size;
   };
   return kRenderBytesPerInputByte * (size_of(o.scene_path) + size_of(o.tree_path)) +
-         kRenderBytesPerPixelChannel * uint64_t(s.width) * s.height * channels;
+         kRenderBytesPerPixelChannel * uint64_t(s.width) * s.height * kdray::film_channel_count(s);
 }
 
 int render(const Options& o) {

@@ -13,10 +13,6 @@ namespace {
 
 double rate(double count, double seconds) { return seconds > 0 ? count / seconds : 0; }
 
-size_t film_channels(const kdray::RenderSettings& s) {
-  return 3 + (s.aov_albedo ? 3 : 0) + (s.aov_normal ? 3 : 0) + (s.aov_depth ? 1 : 0);
-}
-
 }  // namespace
 
 FrameResult render_frame(const kdray::Scene& scene, const kdray::KdTree& tree, const Frame& frame,
@@ -119,7 +115,7 @@ bool frame_already_written(const Frame& frame, const kdray::Scene& scene, uint64
   } catch (const kdray::Error&) {
     return false;  // not an image of ours: render it again
   }
-  return film.width == s.width && film.height == s.height && film.channels.size() == film_channels(s) &&
+  return film.width == s.width && film.height == s.height && film.channels.size() == kdray::film_channel_count(s) &&
          film.sample_offset == s.sample_offset && film.sample_count == s.spp && film.seed == s.seed &&
          film.max_bounces == s.max_bounces && film.sampler == s.sampler && film.scene_hash == scene.content_hash &&
          film.tree_hash == tree_hash && film.settings_hash == kdray::render_settings_hash(scene, s);

@@ -16,19 +16,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class KdrenderBatch : public ::testing::Test {
+class KdrenderBatch : public test::CornellFilesTest<KdrenderBatch> {
+ public:
+  static constexpr const char* kFolder = "kdrender-batch";
+
  protected:
-  static void SetUpTestSuite() {
-    dir_ = new fs::path(test::make_temp_dir("kdrender-batch"));
-    auto files = test::prepare_cornell_files(*dir_);
-    scene_ = files.first;
-    tree_ = files.second;
-  }
-  static void TearDownTestSuite() {
-    fs::remove_all(*dir_);
-    delete dir_;
-  }
-  static std::string path(const std::string& name) { return (*dir_ / name).string(); }
   static std::string kdrender(const std::string& arguments) {
     return "KDRAY_CACHE_DIR=" + test::shell_quoted(path("cache")) + " " +
            test::shell_quoted(test::tool_path("kdrender")) + " " + test::shell_quoted(scene_) + " " +
@@ -46,11 +38,7 @@ class KdrenderBatch : public ::testing::Test {
 
   static constexpr const char* kDefaults = "--width 16 --height 12 --spp 2 --cam-pos 278,273,-800 "
                                            "--cam-target 278,273,0 --fov 39.3077";
-  static fs::path* dir_;
-  static std::string scene_, tree_;
 };
-fs::path* KdrenderBatch::dir_ = nullptr;
-std::string KdrenderBatch::scene_, KdrenderBatch::tree_;
 
 TEST_F(KdrenderBatch, FramesEqualSingleCommandsBitForBit) {
   // Each line, and the single command it stands for: the batch's defaults where the line sets nothing.

@@ -15,18 +15,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class KdrenderCli : public ::testing::Test {
+class KdrenderCli : public test::CornellFilesTest<KdrenderCli> {
+ public:
+  static constexpr const char* kFolder = "kdrender-cli";
+
  protected:
-  static void SetUpTestSuite() {
-    dir_ = new fs::path(test::make_temp_dir("kdrender-cli"));
-    auto files = test::prepare_cornell_files(*dir_);
-    scene_ = files.first;
-    tree_ = files.second;
-  }
-  static void TearDownTestSuite() {
-    fs::remove_all(*dir_);
-    delete dir_;
-  }
   // kdrender with its own program cache directory, so the cold and warm builds are this test's.
   static test::ToolRun kdrender(const std::string& arguments) {
     std::string cache = "KDRAY_CACHE_DIR=" + test::shell_quoted((*dir_ / "cache").string()) + " ";
@@ -37,13 +30,7 @@ class KdrenderCli : public ::testing::Test {
     return test::shell_quoted(scene_) + " " + test::shell_quoted(tree_) + " -o " + test::shell_quoted(output) +
            " --width 16 --height 16 --cam-pos 278,273,-800 --cam-target 278,273,0 --fov 39.3077 " + extra;
   }
-  static std::string path(const std::string& name) { return (*dir_ / name).string(); }
-
-  static fs::path* dir_;
-  static std::string scene_, tree_;
 };
-fs::path* KdrenderCli::dir_ = nullptr;
-std::string KdrenderCli::scene_, KdrenderCli::tree_;
 
 TEST_F(KdrenderCli, RendersPngAndReportsJsonWithAWarmSecondBuild) {
   test::ToolRun first = kdrender(cornell(path("a.png"), "--spp 2 --json"));

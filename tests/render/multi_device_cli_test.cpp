@@ -13,19 +13,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class MultiDevice : public ::testing::Test {
+class MultiDevice : public test::CornellFilesTest<MultiDevice> {
+ public:
+  static constexpr const char* kFolder = "multi-device";
+
  protected:
-  static void SetUpTestSuite() {
-    dir_ = new fs::path(test::make_temp_dir("multi-device"));
-    auto files = test::prepare_cornell_files(*dir_);
-    scene_ = files.first;
-    tree_ = files.second;
-  }
-  static void TearDownTestSuite() {
-    fs::remove_all(*dir_);
-    delete dir_;
-  }
-  static std::string path(const std::string& name) { return (*dir_ / name).string(); }
   // kdrender on two single-core PoCL CPU devices.
   static test::ToolRun kdrender(const std::string& output, const std::string& extra) {
     return test::run_command("POCL_DEVICES='pthread pthread' POCL_MAX_PTHREAD_COUNT=1 " +
@@ -35,11 +27,7 @@ class MultiDevice : public ::testing::Test {
                              "--cam-target 278,273,0 --fov 39.3077 " + extra);
   }
 
-  static fs::path* dir_;
-  static std::string scene_, tree_;
 };
-fs::path* MultiDevice::dir_ = nullptr;
-std::string MultiDevice::scene_, MultiDevice::tree_;
 
 TEST_F(MultiDevice, TwoDevicesGiveTheSingleDeviceImageAndReportTheirShares) {
   test::ToolRun listed = test::run_command("POCL_DEVICES='pthread pthread' " +

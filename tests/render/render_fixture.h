@@ -10,7 +10,10 @@
 #include <subprocess.h>
 #include <test_corpus.h>
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
+#include <tuple>
 #include <string>
 
 namespace kdray::test {
@@ -55,5 +58,25 @@ inline std::pair<std::string, std::string> prepare_cornell_files(const std::file
   }
   return {scene, tree};
 }
+
+// A test suite over the sample Cornell box converted and built by the tools, once per suite, in a
+// temporary folder named after Suite::kFolder; Suite derives from CornellFilesTest<Suite>, so each
+// suite keeps its own folder.
+template <typename Suite>
+class CornellFilesTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new std::filesystem::path(make_temp_dir(Suite::kFolder));
+    std::tie(scene_, tree_) = prepare_cornell_files(*dir_);
+  }
+  static void TearDownTestSuite() {
+    std::filesystem::remove_all(*dir_);
+    delete dir_;
+  }
+  static std::string path(const std::string& name) { return (*dir_ / name).string(); }
+
+  static inline std::filesystem::path* dir_ = nullptr;
+  static inline std::string scene_, tree_;
+};
 
 }  // namespace kdray::test

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Batch throughput (issue 14): the 36 frames of samples/turntable.jobs (the Cornell box with the
-# Stanford bunny, samples/cornell-bunny.sh) at 128x128, 16 spp, 8 bounces, rendered by one
+# Stanford bunny, bench/cornell_bunny.py --layout turntable) at 128x128, 16 spp, 8 bounces, rendered by one
 # `kdrender --jobs` process against 36 separate kdrender processes (one per line), interleaved,
 # median of RUNS (default 3) wall times. Checks that both give the same bytes for every frame.
 # The program cache is warmed first, so neither side compiles kernels.
@@ -20,7 +20,7 @@ now() { date +%s.%N; }
 echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), L3 $(lscpu | sed -n 's/^L3 cache: *//p'), $(date -u +%Y-%m-%dT%H:%MZ)"
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 cd "$WORK"
-"$ROOT/samples/cornell-bunny.sh" cornell-bunny.obj
+"$ROOT/bench/cornell_bunny.py" . --layout turntable > /dev/null
 "$BUILD/tools/kdconvert/kdconvert" cornell-bunny.obj scene.kdscene --quiet
 "$BUILD/tools/kdbuild/kdbuild" scene.kdscene scene.kdtree --quiet > /dev/null
 mapfile -t lines < <(sed -e 's/#.*//' -e '/^[[:space:]]*$/d' "$ROOT/samples/turntable.jobs")

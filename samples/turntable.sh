@@ -1,6 +1,6 @@
 #!/bin/sh
 # Renders turntable.jobs in one kdrender process: converts the Cornell box with the bunny
-# (cornell-bunny.sh), builds its tree, then all 36 frames into OUT (default ../out/turntable).
+# (bench/cornell_bunny.py --layout turntable), builds its tree, then all 36 frames into OUT (default ../out/turntable).
 #   samples/turntable.sh [BUILD_DIR] [OUT_DIR] [kdrender options for every frame]
 # The options default to --width 256 --height 256 --spp 64 --max-bounces 8; options given
 # replace them all (e.g. --width 128 --height 128 --spp 16 --resume).
@@ -12,7 +12,7 @@ out=${2:-$here/../out/turntable}
 mkdir -p "$out"
 cd "$out"
 [ -f cornell-bunny.kdscene ] || {
-  "$here/cornell-bunny.sh" cornell-bunny.obj
+  "$here/../bench/cornell_bunny.py" . --layout turntable > /dev/null
   "$build/tools/kdconvert/kdconvert" cornell-bunny.obj cornell-bunny.kdscene --quiet
 }
 [ -f cornell-bunny.kdtree ] || "$build/tools/kdbuild/kdbuild" cornell-bunny.kdscene cornell-bunny.kdtree --quiet

@@ -168,8 +168,12 @@ ExrClaims read_exr_claims(const std::string& path, const std::string& header) {
       // OpenEXR reads the list up to that empty name whatever the size says.
       size_t entry = at;
       for (; entry < end && header[entry] != '\0'; ++claims.channels) {
-        name_at(entry, end);
+        const std::string channel = name_at(entry, end);
         if (entry + 16 > end) throw fail("damaged channel list");
+        // Pixel type, linear flag and padding, then x and y sampling. OpenEXR sizes its line
+        // buffers from the sampling, so a negative one costs gigabytes; kdrender samples every pixel.
+        if (uint64_t(int32_at(entry)) > 2) throw fail("channel " + channel + " has an unknown pixel type");
+        if (int32_at(entry + 8) != 1 || int32_at(entry + 12) != 1) throw fail("channel " + channel + " is subsampled");
         entry += 16;
       }
       if (entry + 1 != end) throw fail("damaged channel list");

@@ -163,11 +163,13 @@ ExrClaims read_exr_claims(const std::string& path, const std::string& header) {
       claims.width = int32_at(at + 8) - int32_at(at) + 1;
       claims.height = int32_at(at + 12) - int32_at(at + 4) + 1;
       have_window = true;
-    } else if (name == "channels" && type == "chlist") {
+    } else if (type == "chlist") {
       // Entries (a name and 16 bytes) up to an empty name, which must be the value's last byte:
-      // OpenEXR reads the list up to that empty name whatever the size says.
+      // OpenEXR reads any channel list up to that empty name whatever the size says, so every
+      // list is checked, not only the image's own.
       size_t entry = at;
-      for (; entry < end && header[entry] != '\0'; ++claims.channels) {
+      int64_t count = 0;
+      for (; entry < end && header[entry] != '\0'; ++count) {
         const std::string channel = name_at(entry, end);
         if (entry + 16 > end) throw fail("damaged channel list");
         // Pixel type, linear flag and padding, then x and y sampling. OpenEXR sizes its line
@@ -177,7 +179,10 @@ ExrClaims read_exr_claims(const std::string& path, const std::string& header) {
         entry += 16;
       }
       if (entry + 1 != end) throw fail("damaged channel list");
-      have_channels = true;
+      if (name == "channels") {
+        claims.channels = count;
+        have_channels = true;
+      }
     } else if (name == "compression" && type == "compression") {
       // What the expansion bound below holds for: none, RLE, ZIP of one or of 16 lines.
       if (uint8_t(header[at]) > 3) throw fail("compression other than none, RLE or ZIP");

@@ -141,18 +141,19 @@ class AssimpConverter {
   int32_t embedded_texture(TextureCache& textures, const std::string& key, const aiTexture& texture) {
     if (texture.mHeight == 0)  // compressed image file bytes (PNG, JPEG...)
       return textures.from_memory(key, texture.pcData, texture.mWidth, texture.achFormatHint);
-    Texture decoded;  // raw BGRA texels
-    decoded.name = key;
-    decoded.width = texture.mWidth;
-    decoded.height = texture.mHeight;
-    decoded.rgba.resize(uint64_t(texture.mWidth) * texture.mHeight * 4);
-    for (uint64_t i = 0; i < uint64_t(texture.mWidth) * texture.mHeight; ++i) {
-      const aiTexel& texel = texture.pcData[i];
-      uint8_t* out = &decoded.rgba[i * 4];
-      out[0] = texel.r, out[1] = texel.g, out[2] = texel.b, out[3] = texel.a;
-    }
-    scene_.textures.push_back(std::move(decoded));
-    return int32_t(scene_.textures.size() - 1);
+    return textures.from_texels(key, [&] {
+      Texture decoded;  // raw BGRA texels
+      decoded.name = key;
+      decoded.width = texture.mWidth;
+      decoded.height = texture.mHeight;
+      decoded.rgba.resize(uint64_t(texture.mWidth) * texture.mHeight * 4);
+      for (uint64_t i = 0; i < uint64_t(texture.mWidth) * texture.mHeight; ++i) {
+        const aiTexel& texel = texture.pcData[i];
+        uint8_t* out = &decoded.rgba[i * 4];
+        out[0] = texel.r, out[1] = texel.g, out[2] = texel.b, out[3] = texel.a;
+      }
+      return decoded;
+    });
   }
 
   void add_mesh_instance(const aiMesh& mesh, const aiMatrix4x4& transform) {

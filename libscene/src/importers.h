@@ -6,6 +6,7 @@
 #include <kdray/scene.h>
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 
@@ -31,6 +32,8 @@ class TextureCache {
   // the content hash does not depend on where the asset was converted.
   int32_t from_file(const std::string& path, const std::string& reference);
   int32_t from_memory(const std::string& key, const void* data, size_t size, const std::string& format_hint);
+  // A texture the asset holds as raw texels: `convert` makes the scene's texture on first use.
+  int32_t from_texels(const std::string& key, const std::function<Texture()>& convert);
 
  private:
   template <typename Decode>

@@ -37,4 +37,8 @@ int32_t TextureCache::from_memory(const std::string& key, const void* data, size
   return cached(key, [&](std::string& problem) { return decode_texture_memory(key, data, size, format_hint, problem); });
 }
 
+int32_t TextureCache::from_texels(const std::string& key, const std::function<Texture()>& convert) {
+  return cached(key, [&](std::string&) { return std::optional<Texture>(convert()); });
+}
+
 }  // namespace kdray

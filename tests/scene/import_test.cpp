@@ -5,6 +5,8 @@
 
 #include "test_corpus.h"
 
+#include <assimp/Exporter.hpp>
+#include <assimp/scene.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -192,6 +194,55 @@ TEST_F(Import, DiffuseTextureIsDecodedIntoTheScene) {
   EXPECT_EQ(texture.rgba, (std::vector<uint8_t>{255, 0, 0, 255, 0, 128, 255, 255}));
   EXPECT_EQ(scene.materials[0].diffuse_texture, 0);
   EXPECT_TRUE(scene.import_stats.warnings.empty());
+}
+
+// Assimp hands some formats' textures over as raw texels rather than image file bytes; written
+// here as Assimp's own binary dump: two triangles whose two materials share one 2x2 texture.
+TEST_F(Import, ARawEmbeddedTextureSharedByTwoMaterialsIsStoredOnce) {
+  aiScene source;  // owns and frees everything below
+  source.mRootNode = new aiNode();
+  source.mNumMeshes = 2;
+  source.mMeshes = new aiMesh*[2];
+  for (unsigned m = 0; m < 2; ++m) {
+    aiMesh* mesh = new aiMesh();
+    mesh->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
+    mesh->mNumVertices = 3;
+    mesh->mVertices = new aiVector3D[3]{{float(m), 0, 0}, {float(m) + 1, 0, 0}, {float(m), 1, 0}};
+    mesh->mTextureCoords[0] = new aiVector3D[3]{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    mesh->mNumUVComponents[0] = 2;
+    mesh->mNumFaces = 1;
+    mesh->mFaces = new aiFace[1];
+    mesh->mFaces[0].mNumIndices = 3;
+    mesh->mFaces[0].mIndices = new unsigned[3]{0, 1, 2};
+    mesh->mMaterialIndex = m;
+    source.mMeshes[m] = mesh;
+  }
+  source.mRootNode->mNumMeshes = 2;
+  source.mRootNode->mMeshes = new unsigned[2]{0, 1};
+  source.mNumMaterials = 2;
+  source.mMaterials = new aiMaterial*[2];
+  for (unsigned m = 0; m < 2; ++m) {
+    source.mMaterials[m] = new aiMaterial();
+    const aiString embedded("*0");
+    source.mMaterials[m]->AddProperty(&embedded, AI_MATKEY_TEXTURE_DIFFUSE(0));
+  }
+  source.mNumTextures = 1;
+  source.mTextures = new aiTexture*[1];
+  source.mTextures[0] = new aiTexture();
+  source.mTextures[0]->mWidth = 2;
+  source.mTextures[0]->mHeight = 2;
+  source.mTextures[0]->pcData = new aiTexel[4]{{10, 20, 30, 255}, {40, 50, 60, 255}, {70, 80, 90, 255}, {1, 2, 3, 4}};
+  const std::string path = (directory_ / "raw-texels.assbin").string();
+  ASSERT_EQ(Assimp::Exporter().Export(&source, "assbin", path), aiReturn_SUCCESS);
+
+  const Scene scene = import(path);
+  ASSERT_EQ(scene.textures.size(), 1u);
+  ASSERT_EQ(scene.materials.size(), 2u);
+  EXPECT_EQ(scene.materials[0].diffuse_texture, 0);
+  EXPECT_EQ(scene.materials[1].diffuse_texture, 0);
+  // aiTexel is stored BGRA; the scene's texels are RGBA.
+  EXPECT_EQ(std::vector<uint8_t>(scene.textures[0].rgba.begin(), scene.textures[0].rgba.begin() + 4),
+            (std::vector<uint8_t>{30, 20, 10, 255}));
 }
 
 TEST_F(Import, MissingTextureIsAWarningAndTheColourStays) {

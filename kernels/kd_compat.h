@@ -12,10 +12,16 @@ typedef uint kd_u32;
 typedef int kd_i32;
 KD_INLINE float kd_as_float(kd_u32 bits) { return as_float(bits); }
 KD_INLINE kd_u32 kd_as_uint(float value) { return as_uint(value); }
-#define KD_STATIC_ASSERT(cond, msg)
+/* OpenCL C 1.2 has no static_assert: an array of negative size stops the kernel build, and
+ * __COUNTER__ gives each check its own name in the single expanded program. */
+#define KD_CONCAT_(a, b) a##b
+#define KD_CONCAT(a, b) KD_CONCAT_(a, b)
+#define KD_STATIC_ASSERT(cond, msg) typedef char KD_CONCAT(kd_static_assert_, __COUNTER__)[(cond) ? 1 : -1]
+#define KD_OFFSETOF(type, member) __builtin_offsetof(type, member)
 #else
 /* ---- C++ ---- */
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #define KD_INLINE inline
@@ -34,6 +40,7 @@ inline kd_u32 kd_as_uint(float value) {
   return bits;
 }
 #define KD_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
+#define KD_OFFSETOF(type, member) offsetof(type, member)
 #endif
 
 #endif /* KD_COMPAT_H */

@@ -54,10 +54,6 @@
 #include "kd_geometry.h"
 #include "kd_types.h"
 
-/* The deepest tree any builder writes and read_tree accepts; a stack of this size never
- * overflows, which is the "full stack" variant. */
-#define KD_MAX_TREE_DEPTH 64
-
 #ifndef KD_SHORT_STACK_SIZE
 #define KD_SHORT_STACK_SIZE 8
 #endif

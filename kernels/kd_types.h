@@ -14,6 +14,11 @@ typedef struct KdNode {
   kd_u32 header;
 } KdNode;
 KD_STATIC_ASSERT(sizeof(KdNode) == 8, "KdNode is 8 bytes on disk and on the device");
+KD_STATIC_ASSERT(KD_OFFSETOF(KdNode, header) == 4, "KdNode: payload, then header");
+
+/* The deepest tree any builder writes and read_tree accepts (kdray::BuildSettings::kMaxDepthLimit);
+ * a traversal stack of this size never overflows, which is the "full stack" variant. */
+#define KD_MAX_TREE_DEPTH 64
 
 #define KD_LEAF_TAG 3u
 #define KD_MAX_CHILD_INDEX ((1u << 30) - 1u)
@@ -32,6 +37,7 @@ typedef struct RayRecord {
   float tmin, tmax;
 } RayRecord;
 KD_STATIC_ASSERT(sizeof(RayRecord) == 32, "RayRecord is 32 bytes");
+KD_STATIC_ASSERT(KD_OFFSETOF(RayRecord, dx) == 12 && KD_OFFSETOF(RayRecord, tmin) == 24, "RayRecord layout");
 
 /* One record of a hit file: t = +inf and triangle = KD_NO_HIT on a miss; u, v barycentrics
  * of vertices 1 and 2. 16 bytes. */
@@ -41,6 +47,7 @@ typedef struct HitRecord {
   float u, v;
 } HitRecord;
 KD_STATIC_ASSERT(sizeof(HitRecord) == 16, "HitRecord is 16 bytes");
+KD_STATIC_ASSERT(KD_OFFSETOF(HitRecord, triangle) == 4 && KD_OFFSETOF(HitRecord, u) == 8, "HitRecord layout");
 
 #define KD_NO_HIT 0xFFFFFFFFu
 

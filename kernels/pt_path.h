@@ -45,7 +45,7 @@ typedef struct PtPath {
   kd_u32 pixel, sample, bounce;
   kd_i32 alive, shadow_pending, pad;
 } PtPath;
-typedef char pt_path_size_check[sizeof(PtPath) == PT_PATH_BYTES ? 1 : -1];
+KD_STATIC_ASSERT(sizeof(PtPath) == PT_PATH_BYTES, "PT_PATH_BYTES is the size of PtPath");
 
 /* Corner 0, 1 or 2 of a triangle, from the traversal's gathered vertices. */
 inline float3 pt_corner(const KdSceneView* kd, uint triangle, uint corner) {
@@ -404,6 +404,5 @@ inline void pt_path_accumulate(const PtPath* path, __global const PtRenderParams
   }
   if (params->aov_mask & PT_AOV_DEPTH) sums[c++] += pt_fixed(path->depth, nonfinite);
 }
-#define PT_MAX_FILM_CHANNELS 10
 
 #endif /* PT_PATH_H */

@@ -33,9 +33,7 @@
 #define PT_RNG_H
 
 #include "kd_compat.h"
-
-#define PT_SAMPLER_SOBOL 0u
-#define PT_SAMPLER_INDEPENDENT 1u
+#include "pt_codes.h"
 
 #define PT_DIM_CAMERA_X 0u
 #define PT_DIM_CAMERA_Y 1u

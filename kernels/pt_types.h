@@ -1,23 +1,19 @@
 /* Path-tracer structs shared between the host (librender) and the device, byte for byte.
- * Only kd_u32/kd_i32/float members and float[4] instead of float3 (16 bytes on devices). */
+ * Only kd_u32/kd_i32/float members and float[4] instead of float3 (16 bytes on devices): with
+ * every member 4 bytes wide there is no padding, so the layout is the declaration order on both
+ * sides. The KD_STATIC_ASSERTs, checked by the C++ compiler and by the kernel build, pin the sizes
+ * and the offsets that a float3 or a reordered member would move. */
 #ifndef PT_TYPES_H
 #define PT_TYPES_H
 
 #include "kd_compat.h"
-
-/* Material kinds: the numbering of kdray::MaterialType (libscene/scene.h). */
-#define PT_DIFFUSE 0u
-#define PT_EMISSIVE 1u
-#define PT_MIRROR 2u
-#define PT_ROUGH_CONDUCTOR 3u
-#define PT_DIELECTRIC 4u
-#define PT_METALLIC_ROUGHNESS 5u
+#include "pt_codes.h"
 
 /* alpha_cutoff: a ray passes where alpha < alpha_cutoff (glTF MASK; 0 for opaque materials), or,
  * when it is negative, with probability 1 - alpha (glTF BLEND). */
 typedef struct PtMaterial {
   float base_color[3];
-  kd_u32 type;
+  kd_u32 type; /* PT_DIFFUSE... (pt_codes.h) */
   float emission[3];
   float roughness; /* GGX alpha */
   float ior;
@@ -30,6 +26,9 @@ typedef struct PtMaterial {
   kd_i32 emissive_texture;
 } PtMaterial;
 KD_STATIC_ASSERT(sizeof(PtMaterial) == 64, "PtMaterial is 64 bytes");
+KD_STATIC_ASSERT(KD_OFFSETOF(PtMaterial, type) == 12 && KD_OFFSETOF(PtMaterial, emission) == 16 &&
+                     KD_OFFSETOF(PtMaterial, emissive_texture) == 60,
+                 "PtMaterial layout");
 
 /* Texels are linear RGBA float4 (decoded from sRGB on the host), rows top to bottom. */
 typedef struct PtTexture {
@@ -38,6 +37,7 @@ typedef struct PtTexture {
   kd_u32 pad;
 } PtTexture;
 KD_STATIC_ASSERT(sizeof(PtTexture) == 16, "PtTexture is 16 bytes");
+KD_STATIC_ASSERT(KD_OFFSETOF(PtTexture, width) == 4 && KD_OFFSETOF(PtTexture, height) == 8, "PtTexture layout");
 
 /* One entry of the power-weighted emitter table: pick light i when cdf[i-1] <= u < cdf[i]. */
 typedef struct PtLight {
@@ -45,34 +45,24 @@ typedef struct PtLight {
   float cdf;
 } PtLight;
 KD_STATIC_ASSERT(sizeof(PtLight) == 8, "PtLight is 8 bytes");
+KD_STATIC_ASSERT(KD_OFFSETOF(PtLight, cdf) == 4, "PtLight layout");
 
 /* A punctual light (KD_FEATURE_PUNCTUAL), sampled by next-event estimation only. Point and spot
  * lights have an intensity in W/sr, directional lights an irradiance in W/m^2 (`power`). Spot cone:
  * full intensity within the inner half-angle, none outside the outer one, the glTF falloff between
  * (cos_inner, cos_outer hold the cosines). */
-#define PT_PUNCTUAL_POINT 0u
-#define PT_PUNCTUAL_SPOT 1u
-#define PT_PUNCTUAL_DIRECTIONAL 2u
 typedef struct PtPunctual {
   float position[3];
-  kd_u32 type;
+  kd_u32 type; /* PT_PUNCTUAL_* (pt_codes.h) */
   float direction[3]; /* unit, the way the light shines (spot, directional) */
   float cos_inner;
   float power[3];
   float cos_outer;
 } PtPunctual;
 KD_STATIC_ASSERT(sizeof(PtPunctual) == 48, "PtPunctual is 48 bytes");
-
-/* Film channel layout: 3 radiance sums, then the AOVs in this order when enabled. */
-#define PT_AOV_ALBEDO 1u
-#define PT_AOV_NORMAL 2u
-#define PT_AOV_DEPTH 4u
-
-/* Fixed-point accumulation: every sample value is rounded to a multiple of 2^-PT_FIXED_BITS and
- * summed as int64, so the sum of a sample range does not depend on the order of the additions and
- * ranges rendered apart merge exactly. Values are clamped to +-PT_FIXED_MAX first. */
-#define PT_FIXED_BITS 20
-#define PT_FIXED_MAX 16777216.0f
+KD_STATIC_ASSERT(KD_OFFSETOF(PtPunctual, direction) == 16 && KD_OFFSETOF(PtPunctual, power) == 32 &&
+                     KD_OFFSETOF(PtPunctual, cos_outer) == 44,
+                 "PtPunctual layout");
 
 typedef struct PtRenderParams {
   float cam_origin[4];
@@ -87,9 +77,9 @@ typedef struct PtRenderParams {
   kd_u32 max_bounces;
   kd_u32 light_count;
   float light_area_pdf_scale; /* 1 / sum(luminance(Le) * area): area pdf = luminance(Le) * scale */
-  kd_u32 aov_mask;
-  kd_u32 film_channels;
-  kd_u32 sampler;       /* PT_SAMPLER_* (kernels/pt_rng.h) */
+  kd_u32 aov_mask;      /* PT_AOV_* */
+  kd_u32 film_channels; /* pt_film_channel_count(aov_mask) */
+  kd_u32 sampler;       /* PT_SAMPLER_* (pt_codes.h) */
   kd_u32 env_width, env_height; /* KD_FEATURE_ENVIRONMENT: the map (kernels/pt_environment.h) */
   float env_rotate_cos, env_rotate_sin;
   /* Next-event estimation first picks a kind of light: emissive triangles, the environment or a
@@ -100,6 +90,9 @@ typedef struct PtRenderParams {
   kd_u32 pad0;
 } PtRenderParams;
 KD_STATIC_ASSERT(sizeof(PtRenderParams) == 176, "PtRenderParams is 176 bytes");
+KD_STATIC_ASSERT(KD_OFFSETOF(PtRenderParams, width) == 96 && KD_OFFSETOF(PtRenderParams, sampler) == 136 &&
+                     KD_OFFSETOF(PtRenderParams, pad0) == 172,
+                 "PtRenderParams layout");
 
 /* Bytes of one PtPath (kernels/pt_path.h, checked there): the host sizes wavefront buffers by it. */
 #define PT_PATH_BYTES 176

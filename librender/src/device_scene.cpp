@@ -4,6 +4,7 @@
 #include <kdray/traverse.h>
 #include <kdray/util.h>
 
+#include <kernels/pt_scene_args.h>
 #include <kernels/pt_types.h>
 
 #include <cmath>
@@ -31,9 +32,7 @@ cl::Buffer upload_vector(cl::Runtime& runtime, const std::vector<T>& values) {
 
 PtPunctual device_punctual(const Light& light) {
   PtPunctual p{};
-  p.type = light.type == LightType::Point ? PT_PUNCTUAL_POINT
-           : light.type == LightType::Spot ? PT_PUNCTUAL_SPOT
-                                           : PT_PUNCTUAL_DIRECTIONAL;
+  p.type = static_cast<kd_u32>(light.type);
   const Vec3* vectors[3] = {&light.position, &light.direction, &light.color};
   float* out[3] = {p.position, p.direction, p.power};
   for (int k = 0; k < 3; ++k) {
@@ -142,12 +141,13 @@ DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree&
 }
 
 cl_uint bind_scene_args(cl_kernel kernel, const DeviceScene& scene, const cl::Buffer& params) {
-  const cl::Buffer* buffers[] = {&scene.geometry.nodes, &scene.geometry.leaf_triangles,
-                                 &scene.geometry.triangle_vertices, &scene.geometry.indices, &scene.material_ids, &scene.materials, &scene.normals,
-                                 &scene.uvs, &scene.textures, &scene.texels, &scene.lights,
-                                 &scene.env_texels, &scene.env_cdf, &scene.punctuals, &params};
   cl_uint index = 0;
-  for (const cl::Buffer* buffer : buffers) cl::set_arg(kernel, index++, *buffer);
+#define KD_BIND_GEOMETRY(type, name) cl::set_arg(kernel, index++, scene.geometry.name);
+#define KD_BIND_SHADING(type, name) cl::set_arg(kernel, index++, scene.name);
+  PT_SCENE_BUFFERS(KD_BIND_GEOMETRY, KD_BIND_SHADING)
+#undef KD_BIND_GEOMETRY
+#undef KD_BIND_SHADING
+  cl::set_arg(kernel, index++, params);
   return index;
 }
 

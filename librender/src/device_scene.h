@@ -32,7 +32,7 @@ DeviceGeometry upload_geometry(cl::Runtime& runtime, const Scene& scene, const K
 DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree& tree,
                          const Environment* environment);
 
-// Binds the PT_SCENE_ARGS arguments (kernels/pt_kernel_args.h) of kernel, params last;
+// Binds the PT_SCENE_ARGS arguments of kernel (the list of kernels/pt_scene_args.h), params last;
 // returns the index of the next argument.
 cl_uint bind_scene_args(cl_kernel kernel, const DeviceScene& scene, const cl::Buffer& params);
 

@@ -2,15 +2,11 @@
 #include <kdray/film.h>
 #include <kdray/error.h>
 
-#include <kernels/pt_types.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 namespace kdray {
-
-static_assert(kFilmFixedBits == PT_FIXED_BITS, "the film reads the sums the kernels write");
 
 std::vector<float> Film::means() const {
   std::vector<float> values(sums.size(), 0.0f);

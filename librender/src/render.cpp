@@ -4,8 +4,6 @@
 
 #include <kdray/error.h>
 
-#include <kernels/pt_rng.h>
-
 #include <xxhash.h>
 
 #include <algorithm>
@@ -55,12 +53,8 @@ void set_camera(PtRenderParams& params, const Camera& camera, uint32_t width, ui
   store(params.cam_up, scale(up, tan_half));
 }
 
-std::vector<std::string> film_channel_names(const RenderSettings& s) {
-  std::vector<std::string> names = {"R", "G", "B"};
-  if (s.aov_albedo) names.insert(names.end(), {"albedo.R", "albedo.G", "albedo.B"});
-  if (s.aov_normal) names.insert(names.end(), {"N.X", "N.Y", "N.Z"});
-  if (s.aov_depth) names.push_back("Z");
-  return names;
+uint32_t aov_mask(const RenderSettings& s) {
+  return (s.aov_albedo ? PT_AOV_ALBEDO : 0) | (s.aov_normal ? PT_AOV_NORMAL : 0) | (s.aov_depth ? PT_AOV_DEPTH : 0);
 }
 
 void check_settings(const RenderSettings& s) {
@@ -98,8 +92,14 @@ void set_light_selection(PtRenderParams& params, const DeviceScene& device, cons
 
 }  // namespace
 
-uint32_t film_channel_count(const RenderSettings& s) {
-  return 3 + (s.aov_albedo ? 3 : 0) + (s.aov_normal ? 3 : 0) + (s.aov_depth ? 1 : 0);
+uint32_t film_channel_count(const RenderSettings& s) { return pt_film_channel_count(aov_mask(s)); }
+
+std::vector<std::string> film_channel_names(const RenderSettings& s) {
+  std::vector<std::string> names = {"R", "G", "B"};
+  if (s.aov_albedo) names.insert(names.end(), {"albedo.R", "albedo.G", "albedo.B"});
+  if (s.aov_normal) names.insert(names.end(), {"N.X", "N.Y", "N.Z"});
+  if (s.aov_depth) names.push_back("Z");
+  return names;
 }
 
 uint64_t tree_content_hash(const KdTree& tree) {
@@ -249,14 +249,11 @@ std::unique_ptr<DeviceRender> prepare_device(const Scene& scene, const KdTree& t
   params.height = settings.height;
   params.seed = settings.seed;
   params.max_bounces = settings.max_bounces;
-  static_assert(uint32_t(Sampler::Sobol) == PT_SAMPLER_SOBOL && uint32_t(Sampler::Independent) == PT_SAMPLER_INDEPENDENT,
-                "Sampler numbers PT_SAMPLER_*");
   params.sampler = static_cast<uint32_t>(settings.sampler);
   params.light_count = job.scene.light_count;
   params.light_area_pdf_scale = job.scene.light_area_pdf_scale;
   set_light_selection(params, job.scene, environment.get());
-  params.aov_mask = (settings.aov_albedo ? PT_AOV_ALBEDO : 0) | (settings.aov_normal ? PT_AOV_NORMAL : 0) |
-                    (settings.aov_depth ? PT_AOV_DEPTH : 0);
+  params.aov_mask = aov_mask(settings);
   params.film_channels = film_channel_count(settings);
   const size_t film_bytes = size_t(settings.width) * settings.height * params.film_channels * sizeof(int64_t);
   device_render->film_bytes = film_bytes;

@@ -1,5 +1,6 @@
-// The device-code headers compile as OpenCL C on PoCL, and the kernel's traversal returns the
-// same hits, and the sampler the same bits, as the CPU build of the same headers.
+// The device-code headers compile as OpenCL C on PoCL, their compile-time checks hold there too,
+// the path-tracing kernels take the scene arguments the host binds, and the kernel's traversal
+// returns the same hits, and the sampler the same bits, as the CPU build of the same headers.
 #include "test_scenes.h"
 
 #include <kdray/kdtree.h>
@@ -7,6 +8,7 @@
 #include <kdray/traverse.h>
 
 #include <kernels/pt_rng.h>
+#include <kernels/pt_scene_args.h>
 
 #include <CL/cl.h>
 #include <gtest/gtest.h>
@@ -71,11 +73,11 @@ class OpenClDevice {
   }
   bool available() const { return context_ != nullptr; }
 
-  // Builds kProgramSource with the kernels/ folder on the include path; returns the build log
-  // on failure, an empty string on success.
-  std::string build(const std::string& options) {
+  // Builds source with the kernels/ folder on the include path; returns the build log on
+  // failure, an empty string on success.
+  std::string build(const std::string& options, const char* source = kProgramSource) {
     cl_int status = CL_SUCCESS;
-    program_ = clCreateProgramWithSource(context_, 1, &kProgramSource, nullptr, &status);
+    program_ = clCreateProgramWithSource(context_, 1, &source, nullptr, &status);
     if (status != CL_SUCCESS) return "clCreateProgramWithSource failed";
     const std::string all_options = "-I " + std::string(KDRAY_SOURCE_DIR) + "/kernels " + options;
     if (clBuildProgram(program_, 1, &device_, all_options.c_str(), nullptr, nullptr) == CL_SUCCESS) return "";
@@ -85,6 +87,8 @@ class OpenClDevice {
     clGetProgramBuildInfo(program_, device_, CL_PROGRAM_BUILD_LOG, size, log.data(), nullptr);
     return "build failed:\n" + log;
   }
+
+  cl_program program() const { return program_; }
 
   cl_mem buffer(const void* data, size_t size) {
     cl_int status = CL_SUCCESS;
@@ -131,6 +135,51 @@ TEST(KdOpenCl, HeadersCompileWithDoublePrecisionFallback) {
   device.run("report_features", {out}, 1, out, features, sizeof features);
   EXPECT_EQ(features[0], 1) << "PoCL offers cl_khr_fp64; the edge-function fallback must use it";
   EXPECT_EQ(features[1], 8);
+}
+
+TEST(KdOpenCl, StaticAssertionsStopTheKernelBuild) {
+  OpenClDevice device;
+  if (!device.available()) GTEST_SKIP() << "no OpenCL device";
+  const char* failing = "#include \"kd_compat.h\"\nKD_STATIC_ASSERT(sizeof(kd_u32) == 8, \"false\");\n"
+                        "__kernel void probe(__global int* out) { out[0] = 1; }\n";
+  EXPECT_NE(device.build("", failing), "") << "a false KD_STATIC_ASSERT must fail the OpenCL build";
+  OpenClDevice other;
+  const char* holding = "#include \"pt_kernel_args.h\"\n"
+                        "__kernel void probe(__global int* out) { out[0] = PT_MAX_FILM_CHANNELS; }\n";
+  EXPECT_EQ(other.build("-cl-std=CL1.2", holding), "") << "the layout and code checks of the shared headers hold";
+}
+
+// Every kernel of the path-tracing programs starts with PT_SCENE_BUFFERS' buffers and then the
+// params, the arguments bind_scene_args binds from the same list.
+TEST(KdOpenCl, PathTracingKernelsStartWithTheSceneArguments) {
+  std::vector<std::string> expected;
+#define KD_ARG_NAME(type, name) expected.push_back(#name);
+  PT_SCENE_BUFFERS(KD_ARG_NAME, KD_ARG_NAME)
+#undef KD_ARG_NAME
+  expected.push_back("params");
+  for (const char* source : {"#include \"pt_megakernel.cl\"\n", "#include \"pt_wavefront.cl\"\n"}) {
+    OpenClDevice device;
+    if (!device.available()) GTEST_SKIP() << "no OpenCL device";
+    ASSERT_EQ(device.build("-cl-std=CL1.2 -cl-kernel-arg-info", source), "");
+    cl_uint kernel_count = 0;
+    ASSERT_EQ(clCreateKernelsInProgram(device.program(), 0, nullptr, &kernel_count), CL_SUCCESS);
+    std::vector<cl_kernel> kernels(kernel_count);
+    ASSERT_EQ(clCreateKernelsInProgram(device.program(), kernel_count, kernels.data(), nullptr), CL_SUCCESS);
+    EXPECT_GT(kernel_count, 0u) << source;
+    for (cl_kernel kernel : kernels) {
+      char name[256] = {};
+      clGetKernelInfo(kernel, CL_KERNEL_FUNCTION_NAME, sizeof name, name, nullptr);
+      cl_uint arg_count = 0;
+      clGetKernelInfo(kernel, CL_KERNEL_NUM_ARGS, sizeof arg_count, &arg_count, nullptr);
+      ASSERT_GE(arg_count, expected.size()) << name;
+      for (cl_uint i = 0; i < expected.size(); ++i) {
+        char arg[256] = {};
+        ASSERT_EQ(clGetKernelArgInfo(kernel, i, CL_KERNEL_ARG_NAME, sizeof arg, arg, nullptr), CL_SUCCESS);
+        EXPECT_EQ(std::string(arg), expected[i]) << name << " argument " << i;
+      }
+      clReleaseKernel(kernel);
+    }
+  }
 }
 
 TEST(KdOpenCl, KernelTraversalMatchesCpuWithDepthOneStack) {

@@ -21,7 +21,7 @@ struct BuildSettings {
   static constexpr float kDefaultIntersectionCost = 20.0f;  // K_I
   static constexpr float kDefaultEmptyBonus = 0.8f;         // lambda when one side is empty
   static constexpr uint32_t kAutoMaxDepthCap = 48;          // cap of 8 + 1.3 log2 N
-  static constexpr uint32_t kMaxDepthLimit = 64;            // KD_MAX_TREE_DEPTH: the full stack
+  static constexpr uint32_t kMaxDepthLimit = KD_MAX_TREE_DEPTH;  // the full traversal stack
 
   float traversal_cost = kDefaultTraversalCost;
   float intersection_cost = kDefaultIntersectionCost;

@@ -2,12 +2,14 @@
 // apart merge exactly.
 //
 // Merge rule: every sample's value of every channel is rounded to the nearest multiple of
-// 2^-20 (kernels/pt_types.h, PT_FIXED_BITS) and summed as a 64-bit integer. Integer addition is
+// 2^-20 (kFilmFixedBits, kernels/pt_codes.h) and summed as a 64-bit integer. Integer addition is
 // associative, so the sums of samples K..K+N-1 do not depend on how the range was split, on the
 // order of the additions or on the device; merging two adjacent ranges adds their sums. The
 // image is sum / (N * 2^20) per pixel, computed the same way for every film, so one 16-sample
 // render and two merged 8-sample ranges give the same bytes.
 #pragma once
+
+#include <kernels/pt_codes.h>
 
 #include <cstdint>
 #include <optional>
@@ -17,12 +19,12 @@
 
 namespace kdray {
 
-constexpr int kFilmFixedBits = 20;
+constexpr int kFilmFixedBits = PT_FIXED_BITS;
 
-// Where sample values come from (kernels/pt_rng.h; the numbering of PT_SAMPLER_*).
+// Where sample values come from (kernels/pt_rng.h), numbered as the kernels number them.
 enum class Sampler : uint32_t {
-  Sobol = 0,        // Owen-scrambled, shuffled Sobol' points in padded 2D pairs (the default)
-  Independent = 1,  // hashed independent uniform numbers
+  Sobol = PT_SAMPLER_SOBOL,              // Owen-scrambled, shuffled Sobol' points in padded 2D pairs (the default)
+  Independent = PT_SAMPLER_INDEPENDENT,  // hashed independent uniform numbers
 };
 const char* sampler_name(Sampler sampler);  // "sobol", "independent"
 std::optional<Sampler> parse_sampler(const std::string& name);

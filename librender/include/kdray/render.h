@@ -90,8 +90,10 @@ std::string kernel_feature_options(const Scene& scene, const RenderSettings& set
 // The camera from settings, the scene or default_camera(scene bounds), checked (finite, non-degenerate, 0 < fov < 180).
 Camera render_camera(const Scene& scene, const RenderSettings& settings);
 
-// The film's channels for these settings: RGB and the AOV layers asked for.
+// The film's channels for these settings: RGB, then the AOV layers asked for, in the order the
+// kernels accumulate them (kernels/pt_codes.h); film_channel_names has film_channel_count names.
 uint32_t film_channel_count(const RenderSettings& settings);
+std::vector<std::string> film_channel_names(const RenderSettings& settings);
 
 // Identifies the tree an image was rendered with (its nodes and leaf arrays): Film::tree_hash.
 uint64_t tree_content_hash(const KdTree& tree);

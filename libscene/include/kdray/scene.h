@@ -3,6 +3,8 @@
 // Only what the source has is present: empty optional arrays mean "absent".
 #pragma once
 
+#include <kernels/pt_codes.h>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -17,16 +19,17 @@ struct Vec2 {
 };
 static_assert(sizeof(Vec3) == 12 && sizeof(Vec2) == 8, "stored as contiguous float arrays");
 
+// The kernels' numbering (kernels/pt_codes.h), which is also the one .kdscene files store.
 enum class MaterialType : uint32_t {
-  Diffuse = 0,         // Lambertian, base_color is the albedo
-  Emissive = 1,        // one-sided area light; emission is the radiance; base_color still reflects
-  Mirror = 2,          // perfect specular reflection tinted by base_color
-  RoughConductor = 3,  // GGX microfacet reflection, roughness = alpha, Fresnel-Schlick with base_color as F0
-  Dielectric = 4,      // smooth glass with index of refraction ior
+  Diffuse = PT_DIFFUSE,                // Lambertian, base_color is the albedo
+  Emissive = PT_EMISSIVE,              // one-sided area light; emission is the radiance; base_color still reflects
+  Mirror = PT_MIRROR,                  // perfect specular reflection tinted by base_color
+  RoughConductor = PT_ROUGH_CONDUCTOR,  // GGX microfacet reflection, roughness = alpha, Fresnel-Schlick with base_color as F0
+  Dielectric = PT_DIELECTRIC,          // smooth glass with index of refraction ior
   // glTF metallic-roughness: a GGX conductor with base_color as F0, weighted by metallic, over a
   // diffuse base_color under a dielectric GGX coat of index ior (Mitsuba's roughplastic), weighted
   // 1 - metallic; roughness = alpha of both GGX lobes.
-  MetallicRoughness = 5,
+  MetallicRoughness = PT_METALLIC_ROUGHNESS,
 };
 
 // glTF alpha modes: Mask cuts out where alpha < alpha_cutoff, Blend lets a ray through with
@@ -74,7 +77,11 @@ struct Camera {
 // glTF viewers take them, without a 683 lm/W factor: `color` (the light's colour times its
 // intensity) is an intensity in W/sr for point and spot lights and an irradiance in W/m^2 for
 // directional ones.
-enum class LightType : uint32_t { Point = 0, Spot = 1, Directional = 2 };
+enum class LightType : uint32_t {
+  Point = PT_PUNCTUAL_POINT,
+  Spot = PT_PUNCTUAL_SPOT,
+  Directional = PT_PUNCTUAL_DIRECTIONAL,
+};
 
 const char* light_type_name(LightType type);
 

@@ -1,0 +1,52 @@
+/* Numberings and constants that the scene model (libscene), the renderer (librender) and the
+ * kernels agree on. Each is defined once here; the C++ enums take their values from these macros,
+ * so a code cannot mean one thing on the host and another on the device. */
+#ifndef PT_CODES_H
+#define PT_CODES_H
+
+#include "kd_compat.h"
+
+/* Material kinds: PtMaterial::type, kdray::MaterialType and the .kdscene material records. */
+#define PT_DIFFUSE 0u
+#define PT_EMISSIVE 1u
+#define PT_MIRROR 2u
+#define PT_ROUGH_CONDUCTOR 3u
+#define PT_DIELECTRIC 4u
+#define PT_METALLIC_ROUGHNESS 5u
+
+/* Punctual light kinds: PtPunctual::type and kdray::LightType. */
+#define PT_PUNCTUAL_POINT 0u
+#define PT_PUNCTUAL_SPOT 1u
+#define PT_PUNCTUAL_DIRECTIONAL 2u
+
+/* Samplers (kernels/pt_rng.h): PtRenderParams::sampler and kdray::Sampler. */
+#define PT_SAMPLER_SOBOL 0u
+#define PT_SAMPLER_INDEPENDENT 1u
+
+/* Film channel layout: PT_RADIANCE_CHANNELS radiance sums, then each enabled AOV in the order
+ * of its bit (albedo RGB, normal XYZ, depth). */
+#define PT_RADIANCE_CHANNELS 3u
+#define PT_AOV_ALBEDO 1u
+#define PT_AOV_NORMAL 2u
+#define PT_AOV_DEPTH 4u
+#define PT_AOV_ALBEDO_CHANNELS 3u
+#define PT_AOV_NORMAL_CHANNELS 3u
+#define PT_AOV_DEPTH_CHANNELS 1u
+#define PT_MAX_FILM_CHANNELS 10
+
+KD_INLINE kd_u32 pt_film_channel_count(kd_u32 aov_mask) {
+  return PT_RADIANCE_CHANNELS + ((aov_mask & PT_AOV_ALBEDO) ? PT_AOV_ALBEDO_CHANNELS : 0u) +
+         ((aov_mask & PT_AOV_NORMAL) ? PT_AOV_NORMAL_CHANNELS : 0u) +
+         ((aov_mask & PT_AOV_DEPTH) ? PT_AOV_DEPTH_CHANNELS : 0u);
+}
+KD_STATIC_ASSERT(PT_RADIANCE_CHANNELS + PT_AOV_ALBEDO_CHANNELS + PT_AOV_NORMAL_CHANNELS + PT_AOV_DEPTH_CHANNELS ==
+                     PT_MAX_FILM_CHANNELS,
+                 "PT_MAX_FILM_CHANNELS holds every channel");
+
+/* Fixed-point accumulation: every sample value is rounded to a multiple of 2^-PT_FIXED_BITS and
+ * summed as int64, so the sum of a sample range does not depend on the order of the additions and
+ * ranges rendered apart merge exactly. Values are clamped to +-PT_FIXED_MAX first. */
+#define PT_FIXED_BITS 20
+#define PT_FIXED_MAX 16777216.0f
+
+#endif /* PT_CODES_H */

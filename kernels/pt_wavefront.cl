@@ -6,6 +6,14 @@
 
 #define PT_WAVE_BATCH 16u
 
+/* Claims the next batch of paths, [*first, *end); false once every path is taken. */
+inline bool pt_wave_claim(__global uint* next_path, __global const PtRenderParams* params, uint* first, uint* end) {
+  uint count = params->width * params->height;
+  *first = atomic_add(next_path, PT_WAVE_BATCH);
+  *end = min(*first + PT_WAVE_BATCH, count);
+  return *first < count;
+}
+
 __kernel void pt_wave_begin(PT_SCENE_ARGS, __global PtPath* paths, uint sample) {
   uint pixel = get_global_id(0);
   if (pixel >= params->width * params->height) return;
@@ -17,12 +25,10 @@ __kernel void pt_wave_begin(PT_SCENE_ARGS, __global PtPath* paths, uint sample) 
 __kernel void pt_wave_extend(PT_SCENE_ARGS, __global PtPath* paths, __global HitRecord* hits,
                              __global uint* next_path, __global ulong* stats) {
   PtSceneData scene = PT_MAKE_SCENE();
-  uint count = params->width * params->height;
   ulong rays = 0;
-  for (;;) {
-    uint first = atomic_add(next_path, PT_WAVE_BATCH);
-    if (first >= count) break;
-    for (uint i = first; i < min(first + PT_WAVE_BATCH, count); ++i) {
+  uint first, end;
+  while (pt_wave_claim(next_path, params, &first, &end)) {
+    for (uint i = first; i < end; ++i) {
       if (!paths[i].alive) continue;
       PtPath path = paths[i];
       hits[i] = kd_intersect_closest(&scene.kd, pt_path_ray(&path));
@@ -44,12 +50,10 @@ __kernel void pt_wave_shade(PT_SCENE_ARGS, __global PtPath* paths, __global cons
 __kernel void pt_wave_shadow(PT_SCENE_ARGS, __global PtPath* paths, __global uint* next_path,
                              __global ulong* stats) {
   PtSceneData scene = PT_MAKE_SCENE();
-  uint count = params->width * params->height;
   ulong rays = 0;
-  for (;;) {
-    uint first = atomic_add(next_path, PT_WAVE_BATCH);
-    if (first >= count) break;
-    for (uint i = first; i < min(first + PT_WAVE_BATCH, count); ++i) {
+  uint first, end;
+  while (pt_wave_claim(next_path, params, &first, &end)) {
+    for (uint i = first; i < end; ++i) {
       if (!paths[i].shadow_pending) continue;
       PtPath path = paths[i];
       pt_path_resolve_shadow(&path, pt_path_occluded(&scene, &path, params));

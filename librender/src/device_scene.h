@@ -32,8 +32,14 @@ DeviceGeometry upload_geometry(cl::Runtime& runtime, const Scene& scene, const K
 DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree& tree,
                          const Environment* environment);
 
-// Binds the PT_SCENE_ARGS arguments of kernel (the list of kernels/pt_scene_args.h), params last;
-// returns the index of the next argument.
+// Binds the PT_SCENE_ARGS arguments of kernel (the list of kernels/pt_scene_args.h), params last,
+// then `rest` in order; returns the index of the next argument.
 cl_uint bind_scene_args(cl_kernel kernel, const DeviceScene& scene, const cl::Buffer& params);
+template <typename... Rest>
+cl_uint bind_scene_args(cl_kernel kernel, const DeviceScene& scene, const cl::Buffer& params, const Rest&... rest) {
+  cl_uint index = bind_scene_args(kernel, scene, params);
+  (cl::set_arg(kernel, index++, rest), ...);
+  return index;
+}
 
 }  // namespace kdray

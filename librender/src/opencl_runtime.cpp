@@ -15,22 +15,24 @@ const char* const kNoPlatformHelp =
     "no OpenCL platform found: install an OpenCL driver, e.g. PoCL for the CPU "
     "(apt-get install pocl-opencl-icd), and check with `clinfo -l`";
 
-std::string device_string(cl_device_id device, cl_device_info what) {
+// A string property from clGetDeviceInfo or clGetPlatformInfo (`get`, named `call` in errors).
+template <typename Handle, typename Info>
+std::string info_string(cl_int(CL_API_CALL* get)(Handle, Info, size_t, void*, size_t*), const char* call,
+                        Handle handle, Info what) {
   size_t size = 0;
-  cl::check(clGetDeviceInfo(device, what, 0, nullptr, &size), "clGetDeviceInfo");
+  cl::check(get(handle, what, 0, nullptr, &size), call);
   std::string text(size, '\0');
-  cl::check(clGetDeviceInfo(device, what, size, text.data(), nullptr), "clGetDeviceInfo");
+  cl::check(get(handle, what, size, text.data(), nullptr), call);
   while (!text.empty() && text.back() == '\0') text.pop_back();
   return text;
 }
 
+std::string device_string(cl_device_id device, cl_device_info what) {
+  return info_string(clGetDeviceInfo, "clGetDeviceInfo", device, what);
+}
+
 std::string platform_string(cl_platform_id platform, cl_platform_info what) {
-  size_t size = 0;
-  cl::check(clGetPlatformInfo(platform, what, 0, nullptr, &size), "clGetPlatformInfo");
-  std::string text(size, '\0');
-  cl::check(clGetPlatformInfo(platform, what, size, text.data(), nullptr), "clGetPlatformInfo");
-  while (!text.empty() && text.back() == '\0') text.pop_back();
-  return text;
+  return info_string(clGetPlatformInfo, "clGetPlatformInfo", platform, what);
 }
 
 // All devices in list order, with their ids (kept internal: DeviceInfo is host-only data).

@@ -268,10 +268,7 @@ std::unique_ptr<DeviceRender> prepare_device(const Scene& scene, const KdTree& t
   if (!wavefront) {
     device_render->megakernel = cl::create_kernel(build.program, "pt_render");
     cl_kernel kernel = device_render->megakernel.get();
-    cl_uint next = bind_scene_args(kernel, job.scene, job.params_buffer);
-    cl::set_arg(kernel, next++, job.film);
-    cl::set_arg(kernel, next++, job.counter);
-    cl::set_arg(kernel, next++, job.stats);
+    bind_scene_args(kernel, job.scene, job.params_buffer, job.film, job.counter, job.stats);
   }
   cl::check(clFinish(runtime.queue()), "clFinish");
   stats.upload_seconds = seconds_since(upload_start);

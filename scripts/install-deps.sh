@@ -11,6 +11,7 @@ packages=(
   libgtest-dev googletest
   python3-matplotlib python3-numpy bc
   clang libclang-rt-14-dev
+  xz-utils
   munge slurm-wlm
 )
 missing=()

@@ -3,9 +3,11 @@
  *
  * Mapping (Mitsuba 3's `envmap`, +Y up), for a direction d in the map's own frame:
  *   u = atan2(d.x, -d.z) / 2pi wrapped to [0, 1),  v = acos(d.y) / pi  (v = 0: top row, +Y)
- * pixel (i, j) has its centre at ((i + 0.5) / W, (j + 0.5) / H); u wraps, v clamps. The map is
- * turned about +Y by the rotation in PtRenderParams (world = R_y(angle) * map frame, counter-
- * clockwise seen from above).
+ * column i has its centre at u = (i + 0.5) / W and row j at v = j / (H - 1), so the first row is
+ * the zenith and the last the nadir (Mitsuba 3 aligns rows to the poles, not to texel centres:
+ * matching that removes a per-pixel error of up to half a texel towards the poles against its
+ * renders); u wraps, v clamps. The map is turned about +Y by the rotation in PtRenderParams
+ * (world = R_y(angle) * map frame, counter-clockwise seen from above).
  *
  * Sampling distribution: cell (i, j) of the W x H grid over [0,1)^2 has weight
  * luminance(texel) * sin(theta_j), theta_j = pi (j + 0.5) / H. The table `cdf` holds H rows of W
@@ -93,10 +95,10 @@ inline float3 pt_env_texel(__global const float* texels, uint width, uint height
   return vload3((uint)y * width + (uint)x, texels);
 }
 
-/* Bilinear radiance at map coordinates (u, v), strength applied. */
+/* Bilinear radiance at map coordinates (u, v), strength applied; rows as the mapping above. */
 inline float3 pt_env_lookup(__global const float* texels, __global const PtRenderParams* params, float2 uv) {
   uint w = params->env_width, h = params->env_height;
-  float fx = uv.x * (float)w - 0.5f, fy = uv.y * (float)h - 0.5f;
+  float fx = uv.x * (float)w - 0.5f, fy = uv.y * (float)(h - 1);
   float x0 = floor(fx), y0 = floor(fy);
   float ax = fx - x0, ay = fy - y0;
   int ix = (int)x0, iy = (int)y0;

@@ -103,8 +103,8 @@ Vec3 seen(const Environment& env, const Vec3& direction, const Vec3& up = {0, 1,
 }
 
 TEST(EnvironmentLight, DirectionToPixelMappingIsMitsubas) {
-  // u = atan2(x, -z) / 2pi, v = acos(y) / pi, pixel centres at (i + 0.5) / W: an 8 x 4 map
-  // looked up bilinearly at fx = u W - 0.5, fy = v H - 0.5 (rows clamp).
+  // u = atan2(x, -z) / 2pi, v = acos(y) / pi, column centres at (i + 0.5) / W, rows on the poles
+  // at j / (H - 1): an 8 x 4 map looked up bilinearly at fx = u W - 0.5, fy = v (H - 1).
   Environment env = test::coordinate_environment(8, 4);
   auto expect = [&](const Vec3& d, float fx, float fy, const Vec3& up = {0, 1, 0}) {
     Vec3 v = seen(env, d, up);
@@ -118,6 +118,8 @@ TEST(EnvironmentLight, DirectionToPixelMappingIsMitsubas) {
   expect({-1, 0, 0}, 5.5f, 1.5f);   // u = 0.75
   expect({0, 1, 0}, -1, 0.0f, {0, 0, -1});  // the top row (+Y); u is arbitrary at the pole
   expect({0, -1, 0}, -1, 3.0f, {0, 0, -1});
+  // 45 degrees up from +X: v = 0.25 is row 0.75 (texel-centred rows would give 0.5).
+  expect({0.70710678f, 0.70710678f, 0}, 1.5f, 0.75f);
 }
 
 TEST(EnvironmentLight, RotationTurnsTheMapCounterClockwiseSeenFromAbove) {

@@ -249,7 +249,7 @@ void Subtree::add_leaf(const uint32_t* triangles, size_t count) {
   leaf_triangles.insert(leaf_triangles.end(), triangles, triangles + count);
 }
 
-size_t Subtree::add_inner(int axis, float position) {
+size_t Subtree::add_inner_node(int axis, float position) {
   uint32_t bits;
   std::memcpy(&bits, &position, sizeof bits);
   nodes.push_back(KdNode{bits, static_cast<uint32_t>(axis)});

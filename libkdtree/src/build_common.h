@@ -11,6 +11,7 @@
 #include <kernels/kd_types.h>
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -148,12 +149,32 @@ struct Subtree {
   std::vector<uint32_t> leaf_triangles;
 
   void add_leaf(const uint32_t* triangles, size_t count);
-  // Adds an inner node whose far child is not known yet; returns its index.
-  size_t add_inner(int axis, float position);
-  void set_far_child(size_t inner, size_t far_child);
+  // Adds an inner node, then the near child's subtree (build_near() appends it) and the far
+  // child's (build_far()), recording where the far one starts.
+  template <typename BuildNear, typename BuildFar>
+  void add_inner(int axis, float position, const BuildNear& build_near, const BuildFar& build_far) {
+    const size_t inner = add_inner_node(axis, position);
+    build_near();
+    set_far_child(inner, nodes.size());
+    build_far();
+  }
   // Appends a subtree built separately, shifting its indices.
   void append(const Subtree& other);
+
+ private:
+  // Adds an inner node whose far child is not known yet; returns its index.
+  size_t add_inner_node(int axis, float position);
+  void set_far_child(size_t inner, size_t far_child);
 };
+
+// Room for the two children, at `depth`, of a node that a depth-first build splits: per thread
+// and per depth, its arrays keep their capacity from node to node, so that building allocates
+// nothing once it is warm.
+template <typename Node>
+std::array<Node, 2>& children_at_depth(uint32_t depth) {
+  thread_local std::vector<std::array<Node, 2>> children(BuildSettings::kMaxDepthLimit + 2);
+  return children[depth];
+}
 
 // Nodes of at most this many triangles are built by build_small_subtree.
 constexpr size_t kSmallNodeTriangles = 32;

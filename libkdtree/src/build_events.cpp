@@ -70,10 +70,8 @@ void append_piece(const Piece& piece, Subtree& out) {
     out.append(piece.serial);
     return;
   }
-  const size_t inner = out.add_inner(piece.axis, piece.position);
-  append_piece(*piece.below, out);
-  out.set_far_child(inner, out.nodes.size());
-  append_piece(*piece.above, out);
+  out.add_inner(piece.axis, piece.position, [&] { append_piece(*piece.below, out); },
+                [&] { append_piece(*piece.above, out); });
 }
 
 Subtree flatten(Piece&& root) {
@@ -201,8 +199,7 @@ class EventBuilder {
     return split;
   }
 
-  // Depth first on one thread: the children of depth d live in per-thread storage for that
-  // depth and keep their capacity from node to node, so small nodes allocate nothing.
+  // Depth first on one thread.
   void build_serial(const NodeWork& work, Subtree& out) const {
     if (work.triangles.size() <= kSmallNodeTriangles) {
       const Event* const events[3] = {work.events[0].data(), work.events[1].data(), work.events[2].data()};
@@ -216,13 +213,10 @@ class EventBuilder {
       out.add_leaf(work.triangles.data(), work.triangles.size());
       return;
     }
-    const size_t inner = out.add_inner(split.axis, split.position);
-    thread_local std::vector<std::array<NodeWork, 2>> children_at_depth(BuildSettings::kMaxDepthLimit + 2);
-    std::array<NodeWork, 2>& children = children_at_depth[work.depth + 1];
+    std::array<NodeWork, 2>& children = children_at_depth<NodeWork>(work.depth + 1);
     divide(work, split, children[0], children[1]);
-    build_serial(children[0], out);
-    out.set_far_child(inner, out.nodes.size());
-    build_serial(children[1], out);
+    out.add_inner(split.axis, split.position, [&] { build_serial(children[0], out); },
+                  [&] { build_serial(children[1], out); });
   }
 
  private:

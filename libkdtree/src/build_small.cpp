@@ -45,15 +45,9 @@ class SmallBuilder {
       out.add_leaf(node.triangles, node.count);
       return;
     }
-    const size_t inner = out.add_inner(split.axis, split.position);
-    // The children of depth d live in this thread's storage for that depth: a subtree of
-    // depth at most kMaxDepthLimit needs two nodes per level and allocates nothing.
-    thread_local std::vector<std::array<SmallNode, 2>> children_at_depth(BuildSettings::kMaxDepthLimit + 2);
-    std::array<SmallNode, 2>& children = children_at_depth[node.depth + 1];
+    std::array<SmallNode, 2>& children = children_at_depth<SmallNode>(node.depth + 1);
     divide(node, split, children[0], children[1]);
-    build(children[0], out);
-    out.set_far_child(inner, out.nodes.size());
-    build(children[1], out);
+    out.add_inner(split.axis, split.position, [&] { build(children[0], out); }, [&] { build(children[1], out); });
   }
 
  private:

@@ -44,14 +44,18 @@ const detail::TraversalVariant& variant_of(TraversalStack stack) {
   return detail::traversal_short_stack();
 }
 
-// Runs body(begin, end) over [0, count) in chunks on `threads` threads (0: all).
-template <typename Body>
-void parallel_chunks(size_t count, unsigned threads, const Body& body) {
+// Sizes `out` to one result per ray and runs trace(arrays, rays, results, count) over chunks of
+// `rays` on `threads` threads (0: all).
+template <typename Result, typename Trace>
+void trace_in_chunks(const detail::TraversalArrays& arrays, const std::vector<RayRecord>& rays,
+                     std::vector<Result>& out, unsigned threads, const Trace& trace) {
   constexpr size_t kChunk = 1024;  // rays per task: amortises scheduling, keeps load balanced
+  out.resize(rays.size());
   tbb::task_arena arena(threads == 0 ? tbb::task_arena::automatic : static_cast<int>(threads));
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, kChunk),
-                      [&](const tbb::blocked_range<size_t>& range) { body(range.begin(), range.end()); });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), kChunk), [&](const tbb::blocked_range<size_t>& range) {
+      trace(arrays, rays.data() + range.begin(), out.data() + range.begin(), range.size());
+    });
   });
 }
 
@@ -116,26 +120,20 @@ detail::TraversalArrays PreparedTraversal::arrays() const {
 
 void PreparedTraversal::closest(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
                                 const TraceOptions& options) const {
-  hits.resize(rays.size());
-  const detail::TraversalArrays traversal_arrays = arrays();
-  const detail::TraversalVariant& variant = variant_of(options.stack);
-  parallel_chunks(rays.size(), options.threads, [&](size_t begin, size_t end) {
-    variant.closest(traversal_arrays, rays.data() + begin, hits.data() + begin, end - begin);
-  });
+  trace_in_chunks(arrays(), rays, hits, options.threads, variant_of(options.stack).closest);
 }
 
 TraversalWork PreparedTraversal::count_work(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
                                             const TraceOptions& options) const {
-  hits.resize(rays.size());
-  const detail::TraversalArrays traversal_arrays = arrays();
   std::atomic<uint64_t> inner_steps{0}, leaves{0}, triangle_tests{0};
-  parallel_chunks(rays.size(), options.threads, [&](size_t begin, size_t end) {
-    const detail::TraversalCounts counts =
-        detail::count_closest(traversal_arrays, rays.data() + begin, hits.data() + begin, end - begin);
+  auto count_chunk = [&](const detail::TraversalArrays& arrays, const RayRecord* chunk, HitRecord* chunk_hits,
+                         size_t count) {
+    const detail::TraversalCounts counts = detail::count_closest(arrays, chunk, chunk_hits, count);
     inner_steps += counts.inner_steps;
     leaves += counts.leaves;
     triangle_tests += counts.triangle_tests;
-  });
+  };
+  trace_in_chunks(arrays(), rays, hits, options.threads, count_chunk);
   TraversalWork work;
   work.rays = rays.size();
   work.inner_steps = inner_steps;
@@ -146,12 +144,7 @@ TraversalWork PreparedTraversal::count_work(const std::vector<RayRecord>& rays, 
 
 void PreparedTraversal::any(const std::vector<RayRecord>& rays, std::vector<uint8_t>& occluded,
                             const TraceOptions& options) const {
-  occluded.resize(rays.size());
-  const detail::TraversalArrays traversal_arrays = arrays();
-  const detail::TraversalVariant& variant = variant_of(options.stack);
-  parallel_chunks(rays.size(), options.threads, [&](size_t begin, size_t end) {
-    variant.any(traversal_arrays, rays.data() + begin, occluded.data() + begin, end - begin);
-  });
+  trace_in_chunks(arrays(), rays, occluded, options.threads, variant_of(options.stack).any);
 }
 
 void trace_closest(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,

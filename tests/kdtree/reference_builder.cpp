@@ -56,10 +56,8 @@ class ResortingBuilder {
         }
       }
     }
-    const size_t inner = out.add_inner(split.axis, split.position);
-    build(left_voxel, depth + 1, left, left_bounds, out);
-    out.set_far_child(inner, out.nodes.size());
-    build(right_voxel, depth + 1, right, right_bounds, out);
+    out.add_inner(split.axis, split.position, [&] { build(left_voxel, depth + 1, left, left_bounds, out); },
+                  [&] { build(right_voxel, depth + 1, right, right_bounds, out); });
   }
 
  private:

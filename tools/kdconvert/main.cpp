@@ -3,6 +3,7 @@
 #include <kdray/import.h>
 #include <kdray/scene_file.h>
 
+#include <scene_json.h>
 #include <tool_main.h>
 
 #include <chrono>
@@ -18,32 +19,25 @@ struct Timings {
 };
 
 nlohmann::json summary_json(const Scene& scene, const std::string& output, const Timings& timings) {
-  const ImportStats& stats = scene.import_stats;
-  const kdray::Bounds bounds = kdray::scene_bounds(scene);
-  return {
+  nlohmann::json summary = kdray::tool::import_counts_json(scene.import_stats);
+  summary.update({
       {"output", output},
-      {"source", stats.source_file},
-      {"importer", stats.importer},
+      {"source", scene.import_stats.source_file},
       {"triangles", scene.triangle_count()},
       {"vertices", scene.positions.size()},
-      {"source_triangles", stats.source_triangles},
-      {"dropped_degenerate", stats.dropped_degenerate},
-      {"dropped_non_finite", stats.dropped_non_finite},
-      {"ignored_points", stats.ignored_points},
-      {"ignored_lines", stats.ignored_lines},
       {"has_normals", !scene.normals.empty()},
       {"has_uvs", !scene.uvs.empty()},
       {"materials", scene.materials.size()},
       {"textures", scene.textures.size()},
       {"cameras", scene.cameras.size()},
       {"emissive_triangles", scene.emissive_triangles.size()},
-      {"bounds", {{"min", {bounds.min.x, bounds.min.y, bounds.min.z}}, {"max", {bounds.max.x, bounds.max.y, bounds.max.z}}}},
+      {"bounds", kdray::tool::bounds_json(kdray::scene_bounds(scene))},
       {"content_hash", kdray::hash_hex(scene.content_hash)},
       {"geometry_hash", kdray::hash_hex(scene.geometry_hash)},
-      {"warnings", stats.warnings},
       {"import_seconds", timings.import_seconds},
       {"write_seconds", timings.write_seconds},
-  };
+  });
+  return summary;
 }
 
 void print_summary(const Scene& scene, const std::string& output, const Timings& timings) {

@@ -5,6 +5,8 @@
 #include <kdray/error.h>
 #include <kdray/scene_file.h>
 
+#include <scene_json.h>
+
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -14,9 +16,8 @@ namespace kdinfo {
 namespace {
 
 using kdray::Scene;
+using kdray::tool::vec3_json;
 using nlohmann::json;
-
-json vec3_json(const kdray::Vec3& v) { return {v.x, v.y, v.z}; }
 
 std::vector<std::string> optional_sections(uint64_t flags) {
   std::vector<std::string> names;
@@ -56,7 +57,8 @@ json lights_json(const Scene& scene) {
 
 json scene_json(const Scene& scene) {
   const kdray::Bounds bounds = kdray::scene_bounds(scene);
-  const kdray::ImportStats& stats = scene.import_stats;
+  json import = kdray::tool::import_counts_json(scene.import_stats);
+  import["source_file"] = scene.import_stats.source_file;
   json materials = json::array();
   for (const kdray::Material& m : scene.materials)
     materials.push_back({{"name", m.name},
@@ -98,22 +100,14 @@ json scene_json(const Scene& scene) {
       {"geometry_hash", kdray::hash_hex(scene.geometry_hash)},
       {"triangles", scene.triangle_count()},
       {"vertices", scene.positions.size()},
-      {"bounds", {{"min", vec3_json(bounds.min)}, {"max", vec3_json(bounds.max)}}},
+      {"bounds", kdray::tool::bounds_json(bounds)},
       {"materials", materials},
       {"textures", textures},
       {"cameras", cameras},
       {"emissive_triangles", scene.emissive_triangles.size()},
       {"lights", lights_json(scene)},
       {"punctual_lights", punctual},
-      {"import",
-       {{"source_file", stats.source_file},
-        {"importer", stats.importer},
-        {"source_triangles", stats.source_triangles},
-        {"dropped_degenerate", stats.dropped_degenerate},
-        {"dropped_non_finite", stats.dropped_non_finite},
-        {"ignored_points", stats.ignored_points},
-        {"ignored_lines", stats.ignored_lines},
-        {"warnings", stats.warnings}}},
+      {"import", import},
   };
 }
 

@@ -5,6 +5,7 @@
 #include <kdray/error.h>
 #include <kdray/kdtree.h>
 
+#include <scene_json.h>
 #include <tree_json.h>
 
 namespace kdinfo {
@@ -15,8 +16,7 @@ using nlohmann::json;
 json tree_json(const kdray::KdTree& tree) {
   json j = kdray::tool::tree_stats_json(tree);
   j["key"] = kdray::hash_hex(tree.key);
-  const kdray::Bounds& bounds = tree.bounds;
-  j["bounds"] = {{"min", {bounds.min.x, bounds.min.y, bounds.min.z}}, {"max", {bounds.max.x, bounds.max.y, bounds.max.z}}};
+  j["bounds"] = kdray::tool::bounds_json(tree.bounds);
   return j;
 }
 

@@ -7,22 +7,18 @@
 # usage: bench/batch.sh BUILD_DIR
 set -euo pipefail
 cd "$(dirname "$0")/.."
-ROOT=$(pwd)
 BUILD=$(realpath "${1:-build}")
+. bench/common.sh
 RUNS=${RUNS:-3}
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
-KDRENDER=$BUILD/tools/kdrender/kdrender
 SETTINGS=(--width 128 --height 128 --spp 16 --max-bounces 8)
-median() { sort -g | awk '{v[NR]=$1} END {print v[int((NR+1)/2)]}'; }
 now() { date +%s.%N; }
 
-echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), L3 $(lscpu | sed -n 's/^L3 cache: *//p'), $(date -u +%Y-%m-%dT%H:%MZ)"
-echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+machine_line
 cd "$WORK"
 "$ROOT/bench/cornell_bunny.py" . --layout turntable > /dev/null
-"$BUILD/tools/kdconvert/kdconvert" cornell-bunny.obj scene.kdscene --quiet
-"$BUILD/tools/kdbuild/kdbuild" scene.kdscene scene.kdtree --quiet > /dev/null
+scene_files cornell-bunny.obj scene
 mapfile -t lines < <(sed -e 's/#.*//' -e '/^[[:space:]]*$/d' "$ROOT/samples/turntable.jobs")
 echo "frames: ${#lines[@]}"
 export KDRAY_CACHE_DIR=$WORK/program-cache

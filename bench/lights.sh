@@ -11,17 +11,11 @@ cd "$(dirname "$0")/.."
 BUILD=$(realpath "${1:-build}")
 BASELINE=${2:-}
 MITSUBA=${3:-/work/venv-mitsuba/bin/python}
-CORPUS=$(realpath ../shared/corpus)
+. bench/common.sh
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
-KDCONVERT=$BUILD/tools/kdconvert/kdconvert
-KDBUILD=$BUILD/tools/kdbuild/kdbuild
-KDRENDER=$BUILD/tools/kdrender/kdrender
-median() { sort -g | awk '{v[NR]=$1} END {print v[int((NR+1)/2)]}'; }
-json_field() { /usr/bin/python3 -c "import json,sys; print(json.load(sys.stdin)['$1'])"; }
 
-echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), L3 $(lscpu | sed -n 's/^L3 cache: *//p'), $(date -u +%Y-%m-%d)"
-echo "load average: $(cut -d' ' -f1-3 /proc/loadavg)"
+machine_line
 
 echo "== 1. 4096x2048 environment maps"
 oiiotool "$CORPUS/hdri/courtyard.exr" --resize 4096x2048 -d float --compression zip -o "$WORK/map-float.exr"
@@ -32,8 +26,7 @@ for map in map-float.exr map-half.exr map.hdr; do
 done
 
 echo "== 2. Cornell box 256x256, 64 spp, 8 bounces: render_seconds, interleaved"
-"$KDCONVERT" samples/cornell-box.obj "$WORK/cornell.kdscene" > /dev/null
-"$KDBUILD" "$WORK/cornell.kdscene" "$WORK/cornell.kdtree" > /dev/null
+scene_files samples/cornell-box.obj cornell
 VIEW="--cam-pos 278,273,-800 --cam-target 278,273,0 --fov 39.3077 --width 256 --height 256 --spp 64"
 run() { "$1" "$WORK/$2.kdscene" "$WORK/cornell.kdtree" -o "$WORK/c.exr" $VIEW --json | json_field render_seconds; }
 if [ -n "$BASELINE" ]; then
@@ -49,13 +42,12 @@ fi
 echo "kernel options: $("$KDRENDER" "$WORK/cornell.kdscene" "$WORK/cornell.kdtree" -o "$WORK/c.exr" $VIEW --json | json_field kernel_options)"
 
 echo "== 3. spot.obj under courtyard.exr, 128x128, 512 spp, 8 bounces: kdray vs Mitsuba 3"
-"$KDCONVERT" "$CORPUS/misc/spot.obj" "$WORK/spot.kdscene" > /dev/null
-"$KDBUILD" "$WORK/spot.kdscene" "$WORK/spot.kdtree" > /dev/null
+scene_files "$CORPUS/misc/spot.obj" spot
 SPOT="--width 128 --height 128 --max-bounces 8 --spp 512 --cam-pos 0,0.108431,3.57155 --cam-target 0,0.108431,0.190046 --fov 45"
 "$KDRENDER" "$WORK/spot.kdscene" "$WORK/spot.kdtree" -o "$WORK/kd.exr" $SPOT --env "$CORPUS/hdri/courtyard.exr" --quiet
 if [ -x "$MITSUBA" ]; then
   "$MITSUBA" /work/shared/yardsticks/mitsuba_render.py --obj "$CORPUS/misc/spot.obj" --out "$WORK/mi.exr" $SPOT \
     --env "$CORPUS/hdri/courtyard.exr" --threads 2 --sampler multijitter > /dev/null
   for image in kd mi; do echo "$image: $(oiiotool --stats "$WORK/$image.exr" | grep 'Stats Avg' | head -1)"; done
-  "$BUILD/tools/kdcompare/kdcompare" "$WORK/kd.exr" "$WORK/mi.exr" || true
+  "$KDCOMPARE" "$WORK/kd.exr" "$WORK/mi.exr" || true
 fi

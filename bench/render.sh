@@ -9,23 +9,16 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=$(realpath "${1:-build}")
-CORPUS=$(realpath ../shared/corpus)
+. bench/common.sh
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
-KDCONVERT=$BUILD/tools/kdconvert/kdconvert
-KDBUILD=$BUILD/tools/kdbuild/kdbuild
-KDRENDER=$BUILD/tools/kdrender/kdrender
 TRACE_BENCH=$BUILD/bench/render_trace_bench
 VIEW="--cam-pos 278,273,-800 --cam-target 278,273,0 --cam-up 0,1,0 --fov 39.3077"
 export KDRAY_CACHE_DIR=$WORK/kdray-cache POCL_CACHE_DIR=$WORK/pocl-cache
 
-median() { sort -g | awk '{v[NR]=$1} END {print v[int((NR+1)/2)]}'; }
-json_field() { /usr/bin/python3 -c "import json,sys; print(json.load(sys.stdin)['$1'])"; }
-
-echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), $(date -u +%Y-%m-%d)"
+machine_line
 echo "device: $("$KDRENDER" --device list | grep default)"
-"$KDCONVERT" samples/cornell-box.obj "$WORK/cornell.kdscene" > /dev/null
-"$KDBUILD" "$WORK/cornell.kdscene" "$WORK/cornell.kdtree" > /dev/null
+scene_files samples/cornell-box.obj cornell
 CORNELL="$WORK/cornell.kdscene $WORK/cornell.kdtree"
 
 echo
@@ -69,8 +62,7 @@ echo
 echo "== traversal kernel Mrays/s (1M camera rays, 1M random rays; median of 3): render_trace_bench SCENE TREE 1000000"
 for mesh in bunny/stanford-bunny.obj dragon/dragon_vcg_100k.ply large/bunny_sub2.ply large/dragons_4x4.ply; do
   name=$(basename "${mesh%.*}")
-  "$KDCONVERT" "$CORPUS/$mesh" "$WORK/$name.kdscene" > /dev/null
-  "$KDBUILD" "$WORK/$name.kdscene" "$WORK/$name.kdtree" > /dev/null 2>&1
+  scene_files "$CORPUS/$mesh" "$name" 2> /dev/null
   "$TRACE_BENCH" "$WORK/$name.kdscene" "$WORK/$name.kdtree" 1000000 |
     /usr/bin/python3 -c "import json,sys; r=json.load(sys.stdin); print(f\"$name ({r['triangles']} tris): camera {r['camera_mrays_per_s']:.2f}, random {r['random_mrays_per_s']:.2f}\")"
   rm -f "$WORK/$name.kdscene" "$WORK/$name.kdtree"

@@ -27,8 +27,7 @@ MITSUBA_PYTHON=${MITSUBA_PYTHON:-/work/venv-mitsuba/bin/python}
 mkdir -p "$OUT"
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
-KDRENDER=$BUILD/tools/kdrender/kdrender
-KDCOMPARE=$BUILD/tools/kdcompare/kdcompare
+. bench/common.sh
 case $SCENE in
   cornell-box) OBJ=$PWD/samples/cornell-box.obj ;;
   cornell-bunny) bench/cornell_bunny.py "$WORK" > /dev/null && OBJ=$WORK/cornell-bunny.obj ;;
@@ -39,15 +38,11 @@ SIZE="--width 256 --height 256 --max-bounces 8"
 SPP=${SPP:-64}
 export KDRAY_CACHE_DIR=$WORK/kdray-cache
 
-median() { sort -g | awk '{v[NR]=$1} END {print v[int((NR+1)/2)]}'; }
-json_field() { /usr/bin/python3 -c "import json,sys; print(json.load(sys.stdin)['$1'])"; }
 relmse() { "$KDCOMPARE" "$1" "$REFERENCE" --json | json_field relmse; }
 now() { date +%s.%N; }
 
-echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), L3 $(lscpu | sed -n 's/^L3 cache: *//p')," \
-  "$(date -u +%Y-%m-%dT%H:%MZ), load average $(cut -d' ' -f1-3 /proc/loadavg)"
-"$BUILD/tools/kdconvert/kdconvert" "$OBJ" "$WORK/cornell.kdscene" > /dev/null
-"$BUILD/tools/kdbuild/kdbuild" "$WORK/cornell.kdscene" "$WORK/cornell.kdtree" > /dev/null
+machine_line
+scene_files "$OBJ" cornell
 CORNELL="$WORK/cornell.kdscene $WORK/cornell.kdtree"
 if [[ -z "${REFERENCE:-}" ]]; then
   REFERENCE=$OUT/reference.exr

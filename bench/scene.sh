@@ -4,41 +4,37 @@
 # Usage: bench/scene.sh [BUILD_DIR] [N]      (BUILD_DIR defaults to ./build)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build="${1:-build}"
+BUILD=$(realpath "${1:-build}")
 runs="${2:-5}"
-corpus="${KDRAY_CORPUS:-../shared/corpus}"
-kdconvert="$build/tools/kdconvert/kdconvert"
-kdinfo="$build/tools/kdinfo/kdinfo"
-load_bench="$build/bench/scene_load_bench"
-cmake --build "$build" --target kdconvert kdinfo scene_load_bench >/dev/null
-python=/usr/bin/python3
+. bench/common.sh
+kdinfo="$BUILD/tools/kdinfo/kdinfo"
+load_bench="$BUILD/bench/scene_load_bench"
+cmake --build "$BUILD" --target kdconvert kdinfo scene_load_bench >/dev/null
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
-field() { $python -c "import json, sys; print(json.load(sys.stdin)['$1'])"; }
 now() { date +%s.%N; }
 
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(date -u +%Y-%m-%d)"
+machine_line
 echo "median of $runs runs; files in the page cache (each command is run once before timing)"
 printf '\n%-28s %10s %10s %10s %10s %12s %12s %7s\n' mesh triangles "wall s" "import s" "write s" "load s" "read s" ratio
 for mesh in bunny/stanford-bunny.obj large/bunny_sub2.ply; do
-  input="$corpus/$mesh"
+  input="$CORPUS/$mesh"
   output="$work/$(basename "$mesh").kdscene"
-  "$kdconvert" "$input" "$output" --quiet
+  "$KDCONVERT" "$input" "$output" --quiet
   walls=(); imports=(); writes=(); loads=(); reads=()
   for ((run = 0; run < runs; ++run)); do
     start=$(now)
-    summary=$("$kdconvert" "$input" "$output" --json)
+    summary=$("$KDCONVERT" "$input" "$output" --json)
     walls+=("$(echo "$(now) - $start" | bc -l)")
-    imports+=("$(echo "$summary" | field import_seconds)")
-    writes+=("$(echo "$summary" | field write_seconds)")
+    imports+=("$(echo "$summary" | json_field import_seconds)")
+    writes+=("$(echo "$summary" | json_field write_seconds)")
     # One process per measurement, alternating: read_scene (open, validate, checksum, copy
     # into the arrays, check every index) against a plain read of the same bytes.
     loads+=("$("$load_bench" "$output" load)")
     reads+=("$("$load_bench" "$output" read)")
   done
-  triangles=$("$kdinfo" "$output" --json | field triangles)
+  triangles=$("$kdinfo" "$output" --json | json_field triangles)
   wall=$(printf '%s\n' "${walls[@]}" | median)
   import=$(printf '%s\n' "${imports[@]}" | median)
   write=$(printf '%s\n' "${writes[@]}" | median)

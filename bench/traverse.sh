@@ -8,10 +8,8 @@
 #   BUILD=build RUNS=3 RAYS=1000000 THREADS=2 bench/traverse.sh
 # BASELINE=other/build adds a "before" kdtrace (another build of kdray) to every run.
 set -euo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${BUILD:-$root/build}"
+. "$(dirname "$0")/common.sh"
 baseline="${BASELINE:-}"
-corpus="${CORPUS:-$root/../shared/corpus}"
 runs="${RUNS:-3}"
 rays="${RAYS:-1000000}"
 threads="${THREADS:-2}"
@@ -19,19 +17,14 @@ work="${WORK:-${TMPDIR:-/tmp}/kdray-bench-traverse}"
 meshes=(${MESHES:-bunny=bunny/bun_zipper.ply dragon=dragon/dragon_vcg_100k.ply bunny_sub2=large/bunny_sub2.ply})
 mkdir -p "$work"
 embree="$work/embree_trace"
-if [[ ! -x "$embree" || "$root/bench/embree_trace.cpp" -nt "$embree" ]]; then
-  g++ -O2 -std=c++17 -o "$embree" "$root/bench/embree_trace.cpp" -lembree3 -pthread
+if [[ ! -x "$embree" || "$ROOT/bench/embree_trace.cpp" -nt "$embree" ]]; then
+  g++ -O2 -std=c++17 -o "$embree" "$ROOT/bench/embree_trace.cpp" -lembree3 -pthread
 fi
-kdtrace="$build/tools/kdtrace/kdtrace"
 
 # field FILE KEY...: a value of the JSON document in FILE (nested keys).
-field() {
-  /usr/bin/python3 -c 'import json,sys; d=json.load(open(sys.argv[1]))
-for k in sys.argv[2:]: d=d[k]
-print(d)' "$@"
-}
-# median VALUES...
-median() { printf "%s\n" "$@" | sort -g | awk '{v[NR]=$1} END {print (NR%2) ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2}'; }
+field() { json_field "${@:2}" < "$1"; }
+# median_of VALUES...
+median_of() { printf "%s\n" "$@" | median; }
 
 echo "# kdray traversal benchmark: $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')," \
      "L3 $(lscpu | awk -F: '/L3/ {gsub(/^ +/, "", $2); print $2}')"
@@ -43,30 +36,30 @@ for entry in "${meshes[@]}"; do
   name="${entry%%=*}"
   scene="$work/$name.kdscene"
   tree="$work/$name.kdtree"
-  [[ -f "$scene" ]] || "$build/tools/kdconvert/kdconvert" "$corpus/${entry#*=}" "$scene" --quiet > /dev/null
-  [[ -f "$tree" ]] || "$build/tools/kdbuild/kdbuild" "$scene" "$tree" --quiet > /dev/null
+  [[ -f "$scene" ]] || "$KDCONVERT" "$CORPUS/${entry#*=}" "$scene" --quiet > /dev/null
+  [[ -f "$tree" ]] || "$KDBUILD" "$scene" "$tree" --quiet > /dev/null
   [[ -f "$work/$name.random.rays" ]] ||
-    "$kdtrace" "$scene" "$tree" --generate random --count "$rays" --seed 1 --write-rays "$work/$name.random.rays" > /dev/null
+    "$KDTRACE" "$scene" "$tree" --generate random --count "$rays" --seed 1 --write-rays "$work/$name.random.rays" > /dev/null
   [[ -f "$work/$name.camera.rays" ]] ||
-    "$kdtrace" "$scene" "$tree" --generate camera --width 1024 --height 768 --write-rays "$work/$name.camera.rays" > /dev/null
+    "$KDTRACE" "$scene" "$tree" --generate camera --width 1024 --height 768 --write-rays "$work/$name.camera.rays" > /dev/null
   for kind in random camera; do
     ray_file="$work/$name.$kind.rays"
     e=() c=() p=() b=()
     for ((run = 0; run < runs; ++run)); do
       e+=("$("$embree" "$scene" "$ray_file" "$threads" | sed 's/.*: \([0-9.]*\) Mrays.*/\1/')")
-      "$kdtrace" "$scene" "$tree" --rays "$ray_file" --threads "$threads" --json > "$work/cpu.json"
+      "$KDTRACE" "$scene" "$tree" --rays "$ray_file" --threads "$threads" --json > "$work/cpu.json"
       c+=("$(field "$work/cpu.json" mrays_per_s)")
-      "$kdtrace" "$scene" "$tree" --rays "$ray_file" --device cpu --json > "$work/pocl.json"
+      "$KDTRACE" "$scene" "$tree" --rays "$ray_file" --device cpu --json > "$work/pocl.json"
       p+=("$(field "$work/pocl.json" mrays_per_s)")
       if [[ -n "$baseline" ]]; then
         "$baseline/tools/kdtrace/kdtrace" "$scene" "$tree" --rays "$ray_file" --threads "$threads" --json > "$work/before.json"
         b+=("$(field "$work/before.json" mrays_per_s)")
       fi
     done
-    em="$(median "${e[@]}")" cm="$(median "${c[@]}")" pm="$(median "${p[@]}")"
+    em="$(median_of "${e[@]}")" cm="$(median_of "${c[@]}")" pm="$(median_of "${p[@]}")"
     bm="-" br="-"
     if [[ -n "$baseline" ]]; then
-      bm="$(awk -v a="$(median "${b[@]}")" 'BEGIN {printf "%.2f", a}')"
+      bm="$(awk -v a="$(median_of "${b[@]}")" 'BEGIN {printf "%.2f", a}')"
       br="$(awk -v a="$bm" -v b="$em" 'BEGIN {printf "%.2f", a / b}')"
     fi
     printf "%-11s %-7s %8.2f %8.2f %8.2f %8s %7.2f %7.2f %7s %7.1f %7.2f %7.2f %s\n" "$name" "$kind" "$em" "$cm" "$pm" "$bm" \

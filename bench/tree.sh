@@ -6,9 +6,7 @@
 #   BUILD=build RUNS=5 RAYS=1000000 bench/tree.sh
 #   BASELINE=/path/to/old/kdbuild BEST=3 bench/tree.sh   (builder before/after, see below)
 set -euo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${BUILD:-$root/build}"
-corpus="${CORPUS:-$root/../shared/corpus}"
+. "$(dirname "$0")/common.sh"
 runs="${RUNS:-5}"
 rays="${RAYS:-1000000}"
 work="${WORK:-${TMPDIR:-/tmp}/kdray-bench-tree}"
@@ -16,8 +14,8 @@ meshes=(bunny=bunny/stanford-bunny.obj dragon_100k=dragon/dragon_vcg_100k.ply
         bunny_sub2=large/bunny_sub2.ply dragons_4x4=large/dragons_4x4.ply)
 mkdir -p "$work"
 
-# median FIELD FILE: the median of FIELD over the JSON documents (one per line) in FILE.
-median() {
+# median_field FIELD FILE: the median of FIELD over the JSON documents (one per line) in FILE.
+median_field() {
   /usr/bin/python3 - "$1" "$2" <<'PY'
 import json, statistics, sys
 values = [json.loads(line)[sys.argv[1]] for line in open(sys.argv[2]) if line.strip()]
@@ -40,19 +38,19 @@ run_json() {
 # steps, leaves, triangle tests) with kdtrace rates on meshes the builder was not tuned on.
 if [[ -n "${BASELINE:-}" ]]; then
 best="${BEST:-3}"
-counters="$build/bench/kdtree_counters"
+counters="$BUILD/bench/kdtree_counters"
 echo
-echo "# builder comparison: $BASELINE (before) vs $build/tools/kdbuild/kdbuild (after), best of $best, --threads 2"
+echo "# builder comparison: $BASELINE (before) vs $KDBUILD (after), best of $best, --threads 2"
 echo "# load average: $(cut -d' ' -f1-3 /proc/loadavg)"
 printf "%-12s %10s %10s %10s %10s %10s %s\n" mesh before_s before_cpu after_s after_cpu speedup same_bytes
 for name in bunny_sub2 dragons_4x4; do
   scene="$work/$name.kdscene"
-  [[ -f "$scene" ]] || "$build/tools/kdconvert/kdconvert" "$corpus/large/$name.ply" "$scene" --quiet > /dev/null
+  [[ -f "$scene" ]] || "$KDCONVERT" "$CORPUS/large/$name.ply" "$scene" --quiet > /dev/null
   : > "$work/$name.before.json"
   : > "$work/$name.after.json"
   for ((run = 0; run < best; ++run)); do
     run_json "$work/$name.before.json" "$BASELINE" "$scene" "$work/$name.before.kdtree" --json --quiet --threads 2
-    run_json "$work/$name.after.json" "$build/tools/kdbuild/kdbuild" "$scene" "$work/$name.after.kdtree" --json --quiet \
+    run_json "$work/$name.after.json" "$KDBUILD" "$scene" "$work/$name.after.kdtree" --json --quiet \
       --threads 2
   done
   /usr/bin/python3 - "$name" "$work/$name.before.json" "$work/$name.after.json" \
@@ -85,11 +83,11 @@ for entry in dragon_100k=dragon/dragon_vcg_100k.ply beetle=misc/beetle-alt.obj r
              bunny_sub2=large/bunny_sub2.ply; do
   name="${entry%%=*}"
   scene="$work/$name.kdscene"
-  [[ -f "$scene" ]] || "$build/tools/kdconvert/kdconvert" "$corpus/${entry#*=}" "$scene" --quiet > /dev/null
-  "$build/tools/kdbuild/kdbuild" "$scene" "$work/$name.q.kdtree" --json --quiet > "$work/$name.q.json"
+  [[ -f "$scene" ]] || "$KDCONVERT" "$CORPUS/${entry#*=}" "$scene" --quiet > /dev/null
+  "$KDBUILD" "$scene" "$work/$name.q.kdtree" --json --quiet > "$work/$name.q.json"
   "$counters" "$scene" "$work/$name.q.kdtree" > "$work/$name.counters.json"
-  camera="$("$build/tools/kdtrace/kdtrace" "$scene" "$work/$name.q.kdtree" --generate camera --json)"
-  random="$("$build/tools/kdtrace/kdtrace" "$scene" "$work/$name.q.kdtree" --generate random --count 1000000 --json)"
+  camera="$("$KDTRACE" "$scene" "$work/$name.q.kdtree" --generate camera --json)"
+  random="$("$KDTRACE" "$scene" "$work/$name.q.kdtree" --generate random --count 1000000 --json)"
   /usr/bin/python3 - "$name" "$work/$name.q.json" "$work/$name.counters.json" "$camera" "$random" <<'PY'
 import json, sys
 b, c = json.load(open(sys.argv[2])), json.load(open(sys.argv[3]))
@@ -109,33 +107,33 @@ echo "# show the work when the wall times show the load"
 printf "%-12s %10s %9s %9s %9s %10s %12s %12s %14s\n" mesh triangles build_s build_cpu peak_MiB sah_cost camera_Mrays random_Mrays random_cpu_s
 for entry in "${meshes[@]}"; do
   name="${entry%%=*}"
-  source="$corpus/${entry#*=}"
+  source="$CORPUS/${entry#*=}"
   scene="$work/$name.kdscene"
   tree="$work/$name.kdtree"
-  [[ -f "$scene" ]] || "$build/tools/kdconvert/kdconvert" "$source" "$scene" --quiet > /dev/null
+  [[ -f "$scene" ]] || "$KDCONVERT" "$source" "$scene" --quiet > /dev/null
   : > "$work/$name.build.json"
   : > "$work/$name.camera.json"
   : > "$work/$name.random.json"
   for ((run = 0; run < runs; ++run)); do
-    run_json "$work/$name.build.json" "$build/tools/kdbuild/kdbuild" "$scene" "$tree" --json --quiet
-    run_json "$work/$name.camera.json" "$build/tools/kdtrace/kdtrace" "$scene" "$tree" --generate camera \
+    run_json "$work/$name.build.json" "$KDBUILD" "$scene" "$tree" --json --quiet
+    run_json "$work/$name.camera.json" "$KDTRACE" "$scene" "$tree" --generate camera \
       --width 1024 --height 768 --json
-    run_json "$work/$name.random.json" "$build/tools/kdtrace/kdtrace" "$scene" "$tree" --generate random \
+    run_json "$work/$name.random.json" "$KDTRACE" "$scene" "$tree" --generate random \
       --count "$rays" --seed 1 --json
   done
-  triangles="$(median triangles "$work/$name.build.json")"
+  triangles="$(median_field triangles "$work/$name.build.json")"
   printf "%-12s %10s %9s %9s %9s %10s %12s %12s %14s\n" "$name" "$triangles" \
-    "$(median build_seconds "$work/$name.build.json")" "$(median build_cpu_seconds "$work/$name.build.json")" \
-    "$(median peak_memory_mib "$work/$name.build.json")" "$(median sah_cost "$work/$name.build.json")" \
-    "$(median mrays_per_s "$work/$name.camera.json")" "$(median mrays_per_s "$work/$name.random.json")" \
-    "$(median cpu_seconds "$work/$name.random.json")"
+    "$(median_field build_seconds "$work/$name.build.json")" "$(median_field build_cpu_seconds "$work/$name.build.json")" \
+    "$(median_field peak_memory_mib "$work/$name.build.json")" "$(median_field sah_cost "$work/$name.build.json")" \
+    "$(median_field mrays_per_s "$work/$name.camera.json")" "$(median_field mrays_per_s "$work/$name.random.json")" \
+    "$(median_field cpu_seconds "$work/$name.random.json")"
 done
 
 : > "$work/bunny_sub2.bbox.json"
-run_json "$work/bunny_sub2.bbox.json" "$build/tools/kdbuild/kdbuild" "$work/bunny_sub2.kdscene" \
+run_json "$work/bunny_sub2.bbox.json" "$KDBUILD" "$work/bunny_sub2.kdscene" \
   "$work/bunny_sub2.bbox.kdtree" --no-perfect-splits --json --quiet
-echo "bunny_sub2 without perfect splits: sah_cost $(median sah_cost "$work/bunny_sub2.bbox.json")," \
-  "build $(median build_seconds "$work/bunny_sub2.bbox.json") s"
+echo "bunny_sub2 without perfect splits: sah_cost $(median_field sah_cost "$work/bunny_sub2.bbox.json")," \
+  "build $(median_field build_seconds "$work/bunny_sub2.bbox.json") s"
 
 echo "# commands (per mesh, SCENE=$work/<mesh>.kdscene, TREE=$work/<mesh>.kdtree):"
 echo "#   kdconvert MESH SCENE --quiet"

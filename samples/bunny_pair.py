@@ -11,6 +11,8 @@ conductor of GGX alpha sqrt(2 / 402) = 0.07."""
 import os
 import sys
 
+from obj_mesh import read_obj, write_atomically
+
 SCALE = 1.0 / 0.155
 PLACES = (("glass", -0.62), ("copper", 0.62))
 MTL = """newmtl glass
@@ -34,16 +36,7 @@ def main():
     if len(sys.argv) != 3:
         sys.exit("usage: bunny_pair.py BUNNY.obj OUT.obj")
     source, out = sys.argv[1], sys.argv[2]
-    vertices, faces = [], []
-    with open(source) as f:
-        for line in f:
-            fields = line.split()
-            if not fields:
-                continue
-            if fields[0] == "v":
-                vertices.append(tuple(float(c) for c in fields[1:4]))
-            elif fields[0] == "f":
-                faces.append([int(c.split("/")[0]) for c in fields[1:]])
+    vertices, faces = read_obj(source)
     min_y = min(v[1] for v in vertices)
     centre_x = (min(v[0] for v in vertices) + max(v[0] for v in vertices)) / 2
     centre_z = (min(v[2] for v in vertices) + max(v[2] for v in vertices)) / 2
@@ -59,10 +52,8 @@ def main():
     s = 3.0
     lines += [f"v {x} 0 {z}" for x, z in ((-s, s), (s, s), (s, -s), (-s, -s))]
     lines += ["usemtl floor", f"f {floor_base + 1} {floor_base + 2} {floor_base + 3} {floor_base + 4}"]
-    for path, text in ((mtl_path, MTL), (out, "\n".join(lines) + "\n")):
-        with open(path + ".tmp", "w") as f:
-            f.write(text)
-        os.replace(path + ".tmp", path)
+    write_atomically(mtl_path, MTL)
+    write_atomically(out, "\n".join(lines) + "\n")
 
 
 if __name__ == "__main__":

@@ -21,7 +21,7 @@ SCENE_bunnies-studio = bunnies
 BUNNIES_VIEW = --cam-pos 0,1.1,3.6 --cam-target 0,0.45,0 --fov 35 --env $(CORPUS)/hdri/studio.exr
 INPUTS_bunnies-studio = $(CORPUS)/hdri/studio.exr
 RENDER_bunnies-studio = $(BUNNIES_VIEW) $(GALLERY_SETTINGS)
-$(OUT)/bunny-pair/bunny-pair.obj: bunny_pair.py $(CORPUS)/bunny/stanford-bunny.obj
+$(OUT)/bunny-pair/bunny-pair.obj: bunny_pair.py obj_mesh.py $(CORPUS)/bunny/stanford-bunny.obj
 	mkdir -p $(@D)
 	/usr/bin/python3 bunny_pair.py $(CORPUS)/bunny/stanford-bunny.obj $@
 

@@ -1,0 +1,38 @@
+# shellcheck shell=bash disable=SC2034  # sourced: the variables are for the scripts that source it
+# What the benchmark scripts share. A script in bench/ sources it, after setting BUILD (a build
+# folder; default: build/ in the repository):
+#   . "$(dirname "$0")/common.sh"
+# It sets ROOT (the repository), CORPUS (the CORPUS variable, else ../shared/corpus beside the
+# repository) and the tools' paths under BUILD, and defines the helpers below.
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+BUILD=$(realpath "${BUILD:-$ROOT/build}")
+CORPUS=$(realpath -m "${CORPUS:-$ROOT/../shared/corpus}")
+KDCONVERT=$BUILD/tools/kdconvert/kdconvert
+KDBUILD=$BUILD/tools/kdbuild/kdbuild
+KDRENDER=$BUILD/tools/kdrender/kdrender
+KDTRACE=$BUILD/tools/kdtrace/kdtrace
+KDCOMPARE=$BUILD/tools/kdcompare/kdcompare
+
+# median: the median of the numbers on stdin, one a line (the mean of the middle two for an even count).
+median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+
+# json_field KEY...: a value of the JSON document on stdin (nested keys, outermost first).
+json_field() {
+  /usr/bin/python3 -c 'import json, sys
+value = json.load(sys.stdin)
+for key in sys.argv[1:]: value = value[key]
+print(value)' "$@"
+}
+
+# machine_line: the machine, the time and the load average, which every figure depends on.
+machine_line() {
+  echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), L3 $(lscpu | sed -n 's/^L3 cache: *//p')," \
+    "$(date -u +%Y-%m-%dT%H:%MZ), load average $(cut -d' ' -f1-3 /proc/loadavg)"
+}
+
+# scene_files SOURCE NAME: converts SOURCE (an asset kdconvert reads) to $WORK/NAME.kdscene and
+# builds its tree $WORK/NAME.kdtree.
+scene_files() {
+  "$KDCONVERT" "$1" "$WORK/$2.kdscene" > /dev/null
+  "$KDBUILD" "$WORK/$2.kdscene" "$WORK/$2.kdtree" > /dev/null
+}

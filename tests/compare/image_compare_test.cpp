@@ -18,20 +18,15 @@ using kdray::test::write_test_image;
 
 namespace {
 
-class ImageCompare : public ::testing::Test {
+class ImageCompare : public kdray::test::TempDirTest<> {
  protected:
-  void SetUp() override { directory_ = kdray::test::make_temp_dir("compare"); }
-  void TearDown() override { fs::remove_all(directory_); }
-
   // Writes the pixels as an EXR and reads them back through the code under test.
   kdray::FloatImage round_trip(const std::string& name, int width, int height, const std::vector<std::string>& channels,
                                const std::vector<float>& pixels) {
-    const fs::path path = directory_ / name;
+    const fs::path path = dir_ / name;
     write_test_image(path, width, height, channels, pixels);
     return kdray::read_float_image(path.string());
   }
-
-  fs::path directory_;
 };
 
 }  // namespace
@@ -149,14 +144,14 @@ TEST_F(ImageCompare, DifferentSizesThrow) {
 }
 
 TEST_F(ImageCompare, EightBitPngReadsAsZeroToOne) {
-  write_test_image(directory_ / "white.png", 2, 2, {"R", "G", "B"}, constant_pixels(2, 2, {1, 1, 1}));
-  const kdray::FloatImage image = kdray::read_float_image((directory_ / "white.png").string());
+  write_test_image(dir_ / "white.png", 2, 2, {"R", "G", "B"}, constant_pixels(2, 2, {1, 1, 1}));
+  const kdray::FloatImage image = kdray::read_float_image((dir_ / "white.png").string());
   ASSERT_EQ(image.channel_count(), 3u);
   for (float value : image.pixels) EXPECT_EQ(value, 1.0f);
 }
 
 TEST_F(ImageCompare, UnreadableFileThrowsNamingIt) {
-  const fs::path garbage = directory_ / "garbage.exr";
+  const fs::path garbage = dir_ / "garbage.exr";
   { std::ofstream(garbage) << "not an image"; }
   try {
     kdray::read_float_image(garbage.string());
@@ -164,7 +159,7 @@ TEST_F(ImageCompare, UnreadableFileThrowsNamingIt) {
   } catch (const kdray::Error& error) {
     EXPECT_NE(std::string(error.what()).find("garbage.exr"), std::string::npos) << error.what();
   }
-  EXPECT_THROW(kdray::read_float_image((directory_ / "missing.exr").string()), kdray::Error);
+  EXPECT_THROW(kdray::read_float_image((dir_ / "missing.exr").string()), kdray::Error);
 }
 
 TEST_F(ImageCompare, HeatmapIsDarkWhereEqualBrightWhereWrongAndMagentaWhereNaN) {
@@ -196,11 +191,11 @@ TEST_F(ImageCompare, AtomicWriteLeavesOnlyTheFinishedFile) {
   image.height = 1;
   image.channel_names = {"R", "G", "B"};
   image.pixels = {0, 0.5f, 1, 0, 0.5f, 1, 0, 0.5f, 1};
-  const fs::path path = directory_ / "out.png";
+  const fs::path path = dir_ / "out.png";
   kdray::write_float_image_atomic(path.string(), image);
   size_t files = 0;
-  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(directory_)) ++files;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir_)) ++files;
   EXPECT_EQ(files, 1u);
   EXPECT_NEAR(kdray::read_float_image(path.string()).pixels[1], 0.5f, 1.0f / 255);
-  EXPECT_THROW(kdray::write_float_image_atomic((directory_ / "no-such-dir" / "x.png").string(), image), kdray::Error);
+  EXPECT_THROW(kdray::write_float_image_atomic((dir_ / "no-such-dir" / "x.png").string(), image), kdray::Error);
 }

@@ -21,25 +21,19 @@ namespace {
 
 // test.exr differs from reference.exr by 0.25 in R only (overall RMSE sqrt(0.0625/3) = 0.144,
 // PSNR with peak 1 = 16.8 dB); small.exr has another size.
-class KdCompareCli : public ::testing::Test {
+class KdCompareCli : public kdray::test::TempDirTest<> {
  protected:
   void SetUp() override {
-    directory_ = kdray::test::make_temp_dir("kdcompare");
     kdray::test::write_test_image(path("test.exr"), 4, 4, {"R", "G", "B"}, constant_pixels(4, 4, {0.5f, 0.5f, 0.5f}));
     kdray::test::write_test_image(path("reference.exr"), 4, 4, {"R", "G", "B"},
                                   constant_pixels(4, 4, {0.75f, 0.5f, 0.5f}));
     kdray::test::write_test_image(path("small.exr"), 2, 4, {"R", "G", "B"}, constant_pixels(2, 4, {0.5f, 0.5f, 0.5f}));
   }
-  void TearDown() override { fs::remove_all(directory_); }
-
-  fs::path path(const std::string& name) const { return directory_ / name; }
 
   ToolRun kdcompare(const std::string& test, const std::string& reference, const std::string& options = "") const {
-    return run_command(shell_quoted(kdray::test::tool_path("kdcompare")) + " " + shell_quoted(path(test).string()) + " " +
-                       shell_quoted(path(reference).string()) + " " + options);
+    return run_command(shell_quoted(kdray::test::tool_path("kdcompare")) + " " + shell_quoted(path(test)) + " " +
+                       shell_quoted(path(reference)) + " " + options);
   }
-
-  fs::path directory_;
 };
 
 }  // namespace
@@ -95,7 +89,7 @@ TEST_F(KdCompareCli, UnreadableFileFails) {
   { std::ofstream(path("garbage.exr")) << "not an image"; }
   EXPECT_EQ(kdcompare("test.exr", "missing.exr").exit_code, 1);
   EXPECT_EQ(kdcompare("garbage.exr", "reference.exr").exit_code, 1);
-  EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--heatmap " + shell_quoted(path("no-dir/map.png").string())).exit_code, 1);
+  EXPECT_EQ(kdcompare("test.exr", "reference.exr", "--heatmap " + shell_quoted(path("no-dir/map.png"))).exit_code, 1);
 }
 
 TEST_F(KdCompareCli, BadArgumentsExitTwo) {
@@ -106,13 +100,13 @@ TEST_F(KdCompareCli, BadArgumentsExitTwo) {
 }
 
 TEST_F(KdCompareCli, HeatmapIsWrittenAsAPng) {
-  const ToolRun run = kdcompare("test.exr", "reference.exr", "--heatmap " + shell_quoted(path("map.png").string()));
+  const ToolRun run = kdcompare("test.exr", "reference.exr", "--heatmap " + shell_quoted(path("map.png")));
   ASSERT_EQ(run.exit_code, 0) << run.out;
-  auto input = OIIO::ImageInput::open(path("map.png").string());
+  auto input = OIIO::ImageInput::open(path("map.png"));
   ASSERT_TRUE(input);
   EXPECT_EQ(input->spec().width, 4);
   EXPECT_EQ(input->spec().nchannels, 3);
-  for (const auto& entry : fs::directory_iterator(directory_)) {
+  for (const auto& entry : fs::directory_iterator(dir_)) {
     EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << "left behind: " << entry.path();
   }
 }

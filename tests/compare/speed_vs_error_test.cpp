@@ -58,17 +58,15 @@ Csv read_csv(const fs::path& path) {
   return csv;
 }
 
-class SpeedVsError : public ::testing::Test {
+class SpeedVsError : public kdray::test::TempDirTest<> {
  protected:
   void SetUp() override {
-    directory_ = kdray::test::make_temp_dir("speed-vs-error");
-    scene_ = (directory_ / "cornell.kdscene").string();
-    tree_ = (directory_ / "cornell.kdtree").string();
+    scene_ = (dir_ / "cornell.kdscene").string();
+    tree_ = (dir_ / "cornell.kdtree").string();
     const std::string obj = std::string(KDRAY_SOURCE_DIR) + "/samples/cornell-box.obj";
     ASSERT_EQ(run_command(tool("kdconvert") + " " + shell_quoted(obj) + " " + shell_quoted(scene_) + " --quiet").exit_code, 0);
     ASSERT_EQ(run_command(tool("kdbuild") + " " + shell_quoted(scene_) + " " + shell_quoted(tree_) + " --quiet").exit_code, 0);
   }
-  void TearDown() override { fs::remove_all(directory_); }
 
   // The report at 8x8 up to 4 spp, with `options` before the "--" that starts kdrender's.
   ToolRun report(const std::string& csv, const std::string& options) {
@@ -77,15 +75,27 @@ class SpeedVsError : public ::testing::Test {
                        tool("kdcompare") + " " + options + " --" + kCornellView);
   }
 
-  fs::path directory_;
+  // Renders the Cornell box at 8x8 to `output` with `options`; kdrender's exit code.
+  int render(const std::string& output, const std::string& options) {
+    return run_command(tool("kdrender") + " " + shell_quoted(scene_) + " " + shell_quoted(tree_) + " -o " +
+                       shell_quoted(output) + " --width 8 --height 8 --quiet " + options + kCornellView)
+        .exit_code;
+  }
+
+  // kdcompare's exit code for two images that must be the same to the bit.
+  static int compare_exactly(const std::string& a, const std::string& b) {
+    return run_command(tool("kdcompare") + " " + shell_quoted(a) + " " + shell_quoted(b) + " --threshold max_abs=0")
+        .exit_code;
+  }
+
   std::string scene_, tree_;
 };
 
 }  // namespace
 
 TEST_F(SpeedVsError, WritesADoublingSeriesAgainstItsOwnReference) {
-  const std::string csv_path = (directory_ / "report.csv").string();
-  const std::string final_image = (directory_ / "final.exr").string();
+  const std::string csv_path = (dir_ / "report.csv").string();
+  const std::string final_image = (dir_ / "final.exr").string();
   const ToolRun run = report(csv_path, "--reference-spp 16 --keep-image " + shell_quoted(final_image));
   ASSERT_EQ(run.exit_code, 0) << run.out;
 
@@ -106,38 +116,30 @@ TEST_F(SpeedVsError, WritesADoublingSeriesAgainstItsOwnReference) {
   }
 
   // Reusing samples is exact: the merged 1 + 1 + 2 samples are the bytes of one 4-sample render.
-  const std::string direct = (directory_ / "direct.exr").string();
-  ASSERT_EQ(run_command(tool("kdrender") + " " + shell_quoted(scene_) + " " + shell_quoted(tree_) + " -o " + shell_quoted(direct) +
-                        " --width 8 --height 8 --spp 4 --seed 0 --quiet" + kCornellView)
-                .exit_code,
-            0);
-  EXPECT_EQ(run_command(tool("kdcompare") + " " + shell_quoted(final_image) + " " + shell_quoted(direct) + " --threshold max_abs=0")
-                .exit_code,
-            0);
+  const std::string direct = (dir_ / "direct.exr").string();
+  ASSERT_EQ(render(direct, "--spp 4 --seed 0"), 0);
+  EXPECT_EQ(compare_exactly(final_image, direct), 0);
 }
 
 TEST_F(SpeedVsError, NamesAGivenReferenceAndPlots) {
-  const std::string reference = (directory_ / "reference.exr").string();
-  ASSERT_EQ(run_command(tool("kdrender") + " " + shell_quoted(scene_) + " " + shell_quoted(tree_) + " -o " + shell_quoted(reference) +
-                        " --width 8 --height 8 --spp 8 --seed 7 --quiet" + kCornellView)
-                .exit_code,
-            0);
-  const std::string csv_path = (directory_ / "given.csv").string();
+  const std::string reference = (dir_ / "reference.exr").string();
+  ASSERT_EQ(render(reference, "--spp 8 --seed 7"), 0);
+  const std::string csv_path = (dir_ / "given.csv").string();
   const ToolRun run = report(csv_path, "--reference " + shell_quoted(reference));
   ASSERT_EQ(run.exit_code, 0) << run.out;
   const Csv csv = read_csv(csv_path);
   ASSERT_FALSE(csv.comments.empty());
   EXPECT_NE(csv.comments.back().find("reference: given"), std::string::npos) << csv.comments.back();
 
-  const std::string plot = (directory_ / "plot.png").string();
+  const std::string plot = (dir_ / "plot.png").string();
   const ToolRun plotted = run_command(kScript + " plot " + shell_quoted(csv_path) + " -o " + shell_quoted(plot));
   ASSERT_EQ(plotted.exit_code, 0) << plotted.out;
   EXPECT_GT(fs::file_size(plot), 1000u);
 }
 
 TEST_F(SpeedVsError, SeriesOfBothSamplersShareOneOwnReference) {
-  const std::string sobol_csv = (directory_ / "sobol.csv").string(), independent_csv = (directory_ / "independent.csv").string();
-  const std::string final_image = (directory_ / "final.exr").string();
+  const std::string sobol_csv = (dir_ / "sobol.csv").string(), independent_csv = (dir_ / "independent.csv").string();
+  const std::string final_image = (dir_ / "final.exr").string();
   ASSERT_EQ(report(sobol_csv, "--reference-spp 16 --sampler sobol").exit_code, 0);
   const ToolRun run = report(independent_csv, "--reference-spp 16 --sampler independent --keep-image " + shell_quoted(final_image));
   ASSERT_EQ(run.exit_code, 0) << run.out;
@@ -150,20 +152,15 @@ TEST_F(SpeedVsError, SeriesOfBothSamplersShareOneOwnReference) {
   EXPECT_TRUE(sampler_described);
   EXPECT_TRUE(reference_reused) << "the second series renders no reference of its own";
   // The series renders with the sampler asked for: its 4-spp image is one independent render's bytes.
-  const std::string direct = (directory_ / "direct.exr").string();
-  ASSERT_EQ(run_command(tool("kdrender") + " " + shell_quoted(scene_) + " " + shell_quoted(tree_) + " -o " + shell_quoted(direct) +
-                        " --width 8 --height 8 --spp 4 --seed 0 --sampler independent --quiet" + kCornellView)
-                .exit_code,
-            0);
-  EXPECT_EQ(run_command(tool("kdcompare") + " " + shell_quoted(final_image) + " " + shell_quoted(direct) + " --threshold max_abs=0")
-                .exit_code,
-            0);
+  const std::string direct = (dir_ / "direct.exr").string();
+  ASSERT_EQ(render(direct, "--spp 4 --seed 0 --sampler independent"), 0);
+  EXPECT_EQ(compare_exactly(final_image, direct), 0);
 }
 
 TEST_F(SpeedVsError, RefusesAMaxSppThatIsNotAPowerOfTwo) {
   const ToolRun run = run_command(kScript + " run " + shell_quoted(scene_) + " " + shell_quoted(tree_) + " --csv " +
-                                  shell_quoted((directory_ / "x.csv").string()) + " --max-spp 3 2>&1");
+                                  shell_quoted((dir_ / "x.csv").string()) + " --max-spp 3 2>&1");
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.out.find("power of two"), std::string::npos) << run.out;
-  EXPECT_FALSE(fs::exists(directory_ / "x.csv"));
+  EXPECT_FALSE(fs::exists(dir_ / "x.csv"));
 }

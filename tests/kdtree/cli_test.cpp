@@ -23,16 +23,13 @@ namespace {
 
 using test::ToolRun;
 
-class KdCli : public ::testing::Test {
+class KdCli : public test::TempDirTest<> {
  protected:
   void SetUp() override {
-    dir_ = test::make_temp_dir("kdtree-cli");
     scene_ = test::box_room();
     write_scene(path("room.kdscene"), scene_);
     scene_ = read_scene(path("room.kdscene"));
   }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
   static std::string slurp(const std::string& file) {
     std::ifstream in(file);
@@ -42,7 +39,6 @@ class KdCli : public ::testing::Test {
     return test::run_command(test::shell_quoted(test::tool_path(tool)) + " " + arguments);
   }
 
-  std::filesystem::path dir_;
   Scene scene_;
 };
 

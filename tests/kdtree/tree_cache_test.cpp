@@ -24,14 +24,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class TreeCacheTest : public ::testing::Test {
+class TreeCacheTest : public test::TempDirTest<> {
  protected:
-  void SetUp() override {
-    dir_ = test::make_temp_dir("tree-cache");
-    scene_ = test::box_room();
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  void SetUp() override { scene_ = test::box_room(); }
   TreeCache cache() { return TreeCache(path("cache"), [this](const std::string& line) { warnings_.push_back(line); }); }
 
   static std::vector<char> bytes_of(const std::string& file) {
@@ -55,7 +50,6 @@ class TreeCacheTest : public ::testing::Test {
            std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(KdNode)) == 0;
   }
 
-  fs::path dir_;
   Scene scene_;
   std::vector<std::string> warnings_;
 };

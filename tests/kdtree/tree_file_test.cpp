@@ -16,15 +16,12 @@
 namespace kdray {
 namespace {
 
-class KdTreeFile : public ::testing::Test {
+class KdTreeFile : public test::TempDirTest<> {
  protected:
   void SetUp() override {
-    dir_ = test::make_temp_dir("kdtree-file");
     scene_ = test::icosphere(2, {0, 0, 0}, 1);
     tree_ = build_kdtree(scene_, BuildSettings{});
   }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
   std::vector<char> bytes_of(const std::string& file) const {
     std::ifstream in(file, std::ios::binary);
@@ -43,7 +40,6 @@ class KdTreeFile : public ::testing::Test {
     return "";
   }
 
-  std::filesystem::path dir_;
   Scene scene_;
   KdTree tree_;
 };

@@ -20,15 +20,13 @@ namespace fs = std::filesystem;
 const std::vector<std::string> kCornellChain = {"cornell-box.kdscene", "cornell-box.kdtree", "cornell-box.png"};
 const std::vector<std::string> kTriangleChain = {"tri.kdscene", "tri.kdtree", "tri.png"};
 
-class SamplesMake : public ::testing::Test {
+class SamplesMake : public test::TempDirTest<> {
  protected:
   void SetUp() override {
-    dir_ = test::make_temp_dir("samples-make");
     for (const char* file : {"Makefile", "report.mk", "cornell-box.obj", "cornell-box.mtl"})
       fs::copy_file(fs::path(KDRAY_SOURCE_DIR) / "samples" / file, dir_ / file);
     std::ofstream(dir_ / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   // make in the copy, the two scenes only, at sizes that render in a moment; stdout and stderr.
   test::ToolRun make(const std::string& arguments) const {
@@ -50,7 +48,6 @@ class SamplesMake : public ::testing::Test {
   void touch(const std::string& file) const { fs::last_write_time(dir_ / file, fs::file_time_type::clock::now()); }
   bool rewritten(const std::string& output) const { return fs::last_write_time(out() / output) != old_time_; }
 
-  fs::path dir_;
   const fs::file_time_type old_time_ = fs::file_time_type::clock::now() - std::chrono::hours(24);
 };
 

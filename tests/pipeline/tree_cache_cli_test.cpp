@@ -20,16 +20,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class TreeCacheCli : public ::testing::Test {
+class TreeCacheCli : public test::TempDirTest<> {
  protected:
   void SetUp() override {
-    dir_ = test::make_temp_dir("tree-cache-cli");
     for (const char* file : {"cornell-box.obj", "cornell-box.mtl"})
       fs::copy_file(fs::path(KDRAY_SOURCE_DIR) / "samples" / file, dir_ / file);
     convert("cornell-box.obj", "box.kdscene");
   }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
   std::string cache() const { return path("cache"); }
 
   // The tool's exit code and stdout; stderr goes to err.txt.
@@ -64,8 +61,6 @@ class TreeCacheCli : public ::testing::Test {
     for (const fs::directory_entry& entry : fs::directory_iterator(cache())) count += entry.path().extension() == ".kdtree";
     return count;
   }
-
-  fs::path dir_;
 };
 
 TEST_F(TreeCacheCli, AMissBuildsAndAHitCopiesTheSameBytes) {

@@ -39,11 +39,11 @@ std::string slurp(const fs::path& path) {
 
 void spit(const fs::path& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
 
-class BadInputTable : public ::testing::Test {
+class BadInputTable : public test::SuiteDirTest<BadInputTable> {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(test::make_temp_dir("bad-input"));
-    const fs::path& d = *dir_;
+    SuiteDirTest::SetUpTestSuite();
+    const fs::path& d = dir_;
     ::setenv("KDRAY_CACHE_DIR", (d / "cache").c_str(), 1);
     spit(d / "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
     spit(d / "text.txt", "this is not a scene, a tree, a ray file or an image\n");
@@ -70,12 +70,9 @@ class BadInputTable : public ::testing::Test {
   }
   static void TearDownTestSuite() {
     ::unsetenv("KDRAY_CACHE_DIR");
-    fs::remove_all(*dir_);
-    delete dir_;
+    SuiteDirTest::TearDownTestSuite();
   }
-  static fs::path* dir_;
 };
-fs::path* BadInputTable::dir_ = nullptr;
 
 std::vector<BadInput> table() {
   const std::string scene = "{DIR}/good.kdscene", tree = "{DIR}/good.kdtree", out = "{DIR}/out";
@@ -144,7 +141,7 @@ TEST_F(BadInputTable, EveryToolAnswersWithOneLineAndTheDocumentedExitCode) {
     const std::string tool = bad.name.substr(0, bad.name.find('/'));
     std::vector<std::string> argv{tool_path(tool)};
     for (std::string arg : bad.args) {
-      if (arg.rfind("{DIR}", 0) == 0) arg = dir_->string() + arg.substr(5);
+      if (arg.rfind("{DIR}", 0) == 0) arg = dir_.string() + arg.substr(5);
       argv.push_back(arg);
     }
     SCOPED_TRACE(bad.name);
@@ -171,7 +168,7 @@ TEST_F(BadInputTable, EveryToolAnswersWithOneLineAndTheDocumentedExitCode) {
 // A stage whose memory estimate exceeds --max-memory is refused before it starts, with one line
 // naming the file, the stage and both figures, and nothing is written.
 TEST_F(BadInputTable, EveryStageOverItsMemoryBudgetIsRefusedNamingTheStage) {
-  const fs::path& d = *dir_;
+  const fs::path& d = dir_;
   const std::string scene = (d / "good.kdscene").string(), tree = (d / "good.kdtree").string();
   struct Case {
     std::vector<std::string> argv;

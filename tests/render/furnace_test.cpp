@@ -14,11 +14,12 @@ namespace {
 constexpr float kAlbedo = 0.5f;
 constexpr float kEmission = 0.75f;
 
-Scene furnace_scene() {
+// A cube seen from inside, every face emitting `emission` over a diffuse `albedo`.
+Scene emitting_cube(const Vec3& albedo, const Vec3& emission) {
   Material material;
   material.type = MaterialType::Emissive;
-  material.base_color = {kAlbedo, kAlbedo, kAlbedo};
-  material.emission = {kEmission, kEmission, kEmission};
+  material.base_color = albedo;
+  material.emission = emission;
   return test::make_inward_cube(material);
 }
 
@@ -31,7 +32,7 @@ double furnace_radiance(uint32_t max_bounces) {
 class Furnace : public ::testing::TestWithParam<uint32_t> {};
 
 TEST_P(Furnace, MeanRadianceMatchesTheGeometricSeriesWithinOnePercent) {
-  Scene scene = furnace_scene();
+  Scene scene = emitting_cube({kAlbedo, kAlbedo, kAlbedo}, {kEmission, kEmission, kEmission});
   KdTree tree = test::tree_for(scene);
   RenderSettings settings = test::tiny_settings(32, 64);
   settings.max_bounces = GetParam();
@@ -47,11 +48,7 @@ INSTANTIATE_TEST_SUITE_P(MaxBounces, Furnace, ::testing::Values(0u, 1u, 2u, 8u))
 TEST(DirectEmitter, EveryPixelSeesExactlyTheEmittedRadiance) {
   // A black, purely emitting enclosure: nothing reflects, so each camera sample returns Le.
   // Le is a multiple of 2^-20, so the fixed-point film holds it exactly.
-  Material material;
-  material.type = MaterialType::Emissive;
-  material.base_color = {0, 0, 0};
-  material.emission = {2.5f, 0.75f, 0.125f};
-  Scene scene = test::make_inward_cube(material);
+  Scene scene = emitting_cube({0, 0, 0}, {2.5f, 0.75f, 0.125f});
   KdTree tree = test::tree_for(scene);
   for (uint32_t bounces : {0u, 8u}) {
     RenderSettings settings = test::tiny_settings(16, 4);
@@ -69,11 +66,7 @@ TEST(DirectEmitter, EveryPixelSeesExactlyTheEmittedRadiance) {
 TEST(DirectEmitter, BackFacesOfEmittersDoNotEmit) {
   // The same cube with outward-facing emitters seen from inside: only the reflections of
   // nothing, so black.
-  Material material;
-  material.type = MaterialType::Emissive;
-  material.base_color = {0.5f, 0.5f, 0.5f};
-  material.emission = {1, 1, 1};
-  Scene scene = test::make_inward_cube(material);
+  Scene scene = emitting_cube({0.5f, 0.5f, 0.5f}, {1, 1, 1});
   for (size_t t = 0; t < scene.triangle_count(); ++t) std::swap(scene.indices[3 * t + 1], scene.indices[3 * t + 2]);
   KdTree tree = test::tree_for(scene);
   Film film = render(scene, tree, test::tiny_settings(16, 4), DeviceSelection{});

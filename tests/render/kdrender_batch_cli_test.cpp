@@ -17,14 +17,9 @@ namespace {
 namespace fs = std::filesystem;
 
 class KdrenderBatch : public test::CornellFilesTest<KdrenderBatch> {
- public:
-  static constexpr const char* kFolder = "kdrender-batch";
-
  protected:
   static std::string kdrender(const std::string& arguments) {
-    return "KDRAY_CACHE_DIR=" + test::shell_quoted(path("cache")) + " " +
-           test::shell_quoted(test::tool_path("kdrender")) + " " + test::shell_quoted(scene_) + " " +
-           test::shell_quoted(tree_) + " " + arguments;
+    return kdrender_command(test::shell_quoted(scene_) + " " + test::shell_quoted(tree_) + " " + arguments);
   }
   // Runs a batch of `lines` with `defaults`; stdout only (the JSON report when --json is given).
   static test::ToolRun batch(const std::string& name, const std::string& lines, const std::string& defaults) {

@@ -16,15 +16,9 @@ namespace {
 namespace fs = std::filesystem;
 
 class KdrenderCli : public test::CornellFilesTest<KdrenderCli> {
- public:
-  static constexpr const char* kFolder = "kdrender-cli";
-
  protected:
-  // kdrender with its own program cache directory, so the cold and warm builds are this test's.
   static test::ToolRun kdrender(const std::string& arguments) {
-    std::string cache = "KDRAY_CACHE_DIR=" + test::shell_quoted((*dir_ / "cache").string()) + " ";
-    return test::run_command(cache + test::shell_quoted(test::tool_path("kdrender")) + " " + arguments +
-                             " 2>&1");
+    return test::run_command(kdrender_command(arguments) + " 2>&1");
   }
   static std::string cornell(const std::string& output, const std::string& extra) {
     return test::shell_quoted(scene_) + " " + test::shell_quoted(tree_) + " -o " + test::shell_quoted(output) +
@@ -116,7 +110,7 @@ TEST_F(KdrenderCli, ListsDevices) {
 
 TEST_F(KdrenderCli, WithoutAnOpenClPlatformSaysHowToInstallPocl) {
   // An empty vendor directory hides every ICD from the loader.
-  test::ToolRun run = test::run_command("OCL_ICD_VENDORS=" + test::shell_quoted((*dir_ / "no-vendors").string()) +
+  test::ToolRun run = test::run_command("OCL_ICD_VENDORS=" + test::shell_quoted(path("no-vendors")) +
                                               " " + test::shell_quoted(test::tool_path("kdrender")) + " --device list 2>&1");
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.out.find("pocl-opencl-icd"), std::string::npos) << run.out;

@@ -10,12 +10,10 @@
 namespace kdray {
 namespace {
 
-namespace fs = std::filesystem;
-
-class KdrenderLights : public ::testing::Test {
+class KdrenderLights : public test::SuiteDirTest<KdrenderLights> {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(test::make_temp_dir("kdrender-lights"));
+    SuiteDirTest::SetUpTestSuite();
     // One unlit diffuse triangle, no camera: the default light and the default camera.
     Scene scene;
     scene.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
@@ -26,20 +24,13 @@ class KdrenderLights : public ::testing::Test {
     write_scene(path("unlit.kdscene"), scene);
     write_tree(path("unlit.kdtree"), tree);
   }
-  static void TearDownTestSuite() {
-    fs::remove_all(*dir_);
-    delete dir_;
-  }
   static test::ToolRun kdrender(const std::string& arguments) {
     return test::run_command(test::shell_quoted(test::tool_path("kdrender")) + " " +
                              test::shell_quoted(path("unlit.kdscene")) + " " + test::shell_quoted(path("unlit.kdtree")) +
                              " -o " + test::shell_quoted(path("out.exr")) + " --width 8 --height 8 --spp 1 --json " +
                              arguments + " 2>&1");
   }
-  static std::string path(const std::string& name) { return (*dir_ / name).string(); }
-  static fs::path* dir_;
 };
-fs::path* KdrenderLights::dir_ = nullptr;
 
 TEST_F(KdrenderLights, AnUnlitSceneWarnsAndGetsTheDefaultLight) {
   test::ToolRun run = kdrender("");

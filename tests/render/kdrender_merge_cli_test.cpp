@@ -15,11 +15,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class KdrenderMerge : public ::testing::Test {
+class KdrenderMerge : public test::CornellFilesTest<KdrenderMerge> {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(test::make_temp_dir("kdrender-merge"));
-    auto files = test::prepare_cornell_files(*dir_);
+    CornellFilesTest::SetUpTestSuite();
     // The shards and their variants, rendered by one batch.
     std::string jobs;
     for (int shard = 0; shard < 4; ++shard) {
@@ -34,16 +33,11 @@ class KdrenderMerge : public ::testing::Test {
     jobs += "-o " + path("light.exr") + " --sample-offset 2 --env-color 1,1,1\n";
     std::ofstream(path("shards.jobs")) << jobs;
     test::ToolRun run = test::run_command(
-        test::shell_quoted(test::tool_path("kdrender")) + " " + files.first + " " + files.second + " --jobs " +
+        test::shell_quoted(test::tool_path("kdrender")) + " " + scene_ + " " + tree_ + " --jobs " +
         path("shards.jobs") + " --spp 2 --width 12 --height 10 --cam-pos 278,273,-800 --cam-target 278,273,0 "
                               "--fov 39.3077 --quiet 2>&1");
     if (run.exit_code != 0) throw std::runtime_error("kdrender --jobs failed: " + run.out);
   }
-  static void TearDownTestSuite() {
-    fs::remove_all(*dir_);
-    delete dir_;
-  }
-  static std::string path(const std::string& name) { return (*dir_ / name).string(); }
   static test::ToolRun merge(const std::vector<std::string>& inputs, const std::string& extra = "") {
     std::string command = test::shell_quoted(test::tool_path("kdrender")) + " --merge";
     for (const std::string& input : inputs) command += " " + path(input);
@@ -59,10 +53,7 @@ class KdrenderMerge : public ::testing::Test {
     EXPECT_NE(run.out.find(what), std::string::npos) << run.out;
     EXPECT_FALSE(fs::exists(path("merged.exr")));
   }
-
-  static fs::path* dir_;
 };
-fs::path* KdrenderMerge::dir_ = nullptr;
 
 TEST_F(KdrenderMerge, ShardsInAnyOrderMergeIntoTheWholeRender) {
   test::ToolRun run = merge({"s2.exr", "s0.exr", "s3.exr", "s1.exr"}, "--spp 8 --quiet");
@@ -102,22 +93,19 @@ TEST(MergeFilmRanges, NamesTheFilmOfAnotherSceneOrTree) {
   other_scene.sample_offset = other_tree.sample_offset = 1;
   other_scene.scene_hash = 7;
   other_tree.tree_hash = 7;
-  try {
-    merge_film_ranges({{"a.exr", a}, {"b.exr", other_scene}});
-    ADD_FAILURE() << "merged films of two scenes";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("b.exr: not a sample range of the same render as a.exr: it differs in scene"),
-              std::string::npos)
-        << e.what();
-  }
-  try {
-    merge_film_ranges({{"a.exr", a}, {"c.exr", other_tree}});
-    ADD_FAILURE() << "merged films of two trees";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("c.exr: not a sample range of the same render as a.exr: it differs in tree"),
-              std::string::npos)
-        << e.what();
-  }
+  // merge_film_ranges must refuse `films` with an error that says `message`.
+  auto expect_refused = [](std::vector<NamedFilm> films, const std::string& message) {
+    try {
+      merge_film_ranges(std::move(films));
+      ADD_FAILURE() << "merged what it should refuse: " << message;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  };
+  expect_refused({{"a.exr", a}, {"b.exr", other_scene}},
+                 "b.exr: not a sample range of the same render as a.exr: it differs in scene");
+  expect_refused({{"a.exr", a}, {"c.exr", other_tree}},
+                 "c.exr: not a sample range of the same render as a.exr: it differs in tree");
   Film b = a;
   b.sample_offset = 1;
   Film merged = merge_film_ranges({{"b.exr", b}, {"a.exr", a}}, std::make_pair(0u, 2u));

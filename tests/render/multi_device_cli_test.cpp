@@ -14,9 +14,6 @@ namespace {
 namespace fs = std::filesystem;
 
 class MultiDevice : public test::CornellFilesTest<MultiDevice> {
- public:
-  static constexpr const char* kFolder = "multi-device";
-
  protected:
   // kdrender on two single-core PoCL CPU devices.
   static test::ToolRun kdrender(const std::string& output, const std::string& extra) {
@@ -26,7 +23,6 @@ class MultiDevice : public test::CornellFilesTest<MultiDevice> {
                              " --width 24 --height 20 --spp 12 --sample-offset 3 --seed 4 --cam-pos 278,273,-800 "
                              "--cam-target 278,273,0 --fov 39.3077 " + extra);
   }
-
 };
 
 TEST_F(MultiDevice, TwoDevicesGiveTheSingleDeviceImageAndReportTheirShares) {

@@ -59,23 +59,22 @@ inline std::pair<std::string, std::string> prepare_cornell_files(const std::file
   return {scene, tree};
 }
 
-// A test suite over the sample Cornell box converted and built by the tools, once per suite, in a
-// temporary folder named after Suite::kFolder; Suite derives from CornellFilesTest<Suite>, so each
-// suite keeps its own folder.
+// A test suite over the sample Cornell box converted and built by the tools, once per suite, in
+// the suite's directory; Suite derives from CornellFilesTest<Suite>.
 template <typename Suite>
-class CornellFilesTest : public ::testing::Test {
+class CornellFilesTest : public SuiteDirTest<Suite> {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new std::filesystem::path(make_temp_dir(Suite::kFolder));
-    std::tie(scene_, tree_) = prepare_cornell_files(*dir_);
+    SuiteDirTest<Suite>::SetUpTestSuite();
+    std::tie(scene_, tree_) = prepare_cornell_files(SuiteDirTest<Suite>::dir_);
   }
-  static void TearDownTestSuite() {
-    std::filesystem::remove_all(*dir_);
-    delete dir_;
+  // The shell command running kdrender with `arguments`, with a program cache of the suite's own,
+  // so that cold and warm kernel builds are the suite's.
+  static std::string kdrender_command(const std::string& arguments) {
+    return "KDRAY_CACHE_DIR=" + shell_quoted(SuiteDirTest<Suite>::path("cache")) + " " +
+           shell_quoted(tool_path("kdrender")) + " " + arguments;
   }
-  static std::string path(const std::string& name) { return (*dir_ / name).string(); }
 
-  static inline std::filesystem::path* dir_ = nullptr;
   static inline std::string scene_, tree_;
 };
 

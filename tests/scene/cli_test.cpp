@@ -18,12 +18,8 @@ namespace {
 using test::run_process;
 using test::tool_path;
 
-class Cli : public ::testing::Test {
+class Cli : public test::TempDirTest<> {
  protected:
-  void SetUp() override { directory_ = test::make_temp_dir("cli"); }
-  void TearDown() override { std::filesystem::remove_all(directory_); }
-  std::string path(const std::string& name) const { return (directory_ / name).string(); }
-
   std::string small_obj() const {
     const std::string obj = path("tri.obj");
     std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
@@ -38,8 +34,6 @@ class Cli : public ::testing::Test {
     arguments.insert(arguments.begin(), tool_path("kdinfo"));
     return run_process(arguments);
   }
-
-  std::filesystem::path directory_;
 };
 
 void expect_one_error_line(const test::ToolRun& result, const std::string& starts_with) {
@@ -120,7 +114,7 @@ TEST_F(Cli, FileWithoutTrianglesLeavesNoOutput) {
   EXPECT_EQ(result.exit_code, 1);
   expect_one_error_line(result, "kdconvert: error: " + obj + ": no triangles to keep");
   EXPECT_TRUE(std::filesystem::exists(obj));
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(directory_), {}), 1) << "only the input remains";
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir_), {}), 1) << "only the input remains";
 }
 
 TEST_F(Cli, UnknownCameraIsAnError) {

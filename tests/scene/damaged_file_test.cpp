@@ -16,18 +16,15 @@
 namespace kdray {
 namespace {
 
-class DamagedSceneFile : public ::testing::Test {
+class DamagedSceneFile : public test::TempDirTest<> {
  protected:
   void SetUp() override {
-    directory_ = test::make_temp_dir("damaged");
     original_path_ = path("original.kdscene");
     write_scene(original_path_, test::make_quad_scene(true, true, true));
     std::ifstream file(original_path_, std::ios::binary);
     bytes_.assign(std::istreambuf_iterator<char>(file), {});
   }
-  void TearDown() override { std::filesystem::remove_all(directory_); }
 
-  std::string path(const std::string& name) const { return (directory_ / name).string(); }
 
   void write_bytes(const std::string& target, const std::vector<char>& bytes) const {
     std::ofstream file(target, std::ios::binary | std::ios::trunc);
@@ -49,7 +46,6 @@ class DamagedSceneFile : public ::testing::Test {
     return {};
   }
 
-  std::filesystem::path directory_;
   std::string original_path_;
   std::vector<char> bytes_;
 };

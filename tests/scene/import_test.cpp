@@ -23,13 +23,10 @@ double signed_area_z(const Scene& scene, size_t triangle) {
   return 0.5 * ((double(b.x) - a.x) * (double(c.y) - a.y) - (double(b.y) - a.y) * (double(c.x) - a.x));
 }
 
-class Import : public ::testing::Test {
+class Import : public test::TempDirTest<> {
  protected:
-  void SetUp() override { directory_ = test::make_temp_dir("import"); }
-  void TearDown() override { std::filesystem::remove_all(directory_); }
-
   std::string write_file(const std::string& name, const std::string& text) const {
-    const std::string path = (directory_ / name).string();
+    const std::string path = (dir_ / name).string();
     std::ofstream(path, std::ios::binary) << text;
     return path;
   }
@@ -39,8 +36,6 @@ class Import : public ::testing::Test {
     options.importer = importer;
     return import_scene(path, options);
   }
-
-  std::filesystem::path directory_;
 };
 
 // A "C" shape: 8 corners, two of them reflex; a 3x3 square with a 2x1 notch cut from its right side.
@@ -232,7 +227,7 @@ TEST_F(Import, ARawEmbeddedTextureSharedByTwoMaterialsIsStoredOnce) {
   source.mTextures[0]->mWidth = 2;
   source.mTextures[0]->mHeight = 2;
   source.mTextures[0]->pcData = new aiTexel[4]{{10, 20, 30, 255}, {40, 50, 60, 255}, {70, 80, 90, 255}, {1, 2, 3, 4}};
-  const std::string path = (directory_ / "raw-texels.assbin").string();
+  const std::string path = (dir_ / "raw-texels.assbin").string();
   ASSERT_EQ(Assimp::Exporter().Export(&source, "assbin", path), aiReturn_SUCCESS);
 
   const Scene scene = import(path);

@@ -73,13 +73,7 @@ TEST(ImportLights, ZUpImportTurnsLightsWithTheGeometry) {
   EXPECT_NEAR(spot.direction.z, 1, 1e-6);
 }
 
-class LightsFile : public ::testing::Test {
- protected:
-  void SetUp() override { directory_ = test::make_temp_dir("lights"); }
-  void TearDown() override { std::filesystem::remove_all(directory_); }
-  std::string path(const std::string& name) const { return (directory_ / name).string(); }
-  std::filesystem::path directory_;
-};
+class LightsFile : public test::TempDirTest<> {};
 
 TEST_F(LightsFile, RoundTripsAndEntersTheContentHash) {
   Scene scene = import_scene(kLightsGltf, {});

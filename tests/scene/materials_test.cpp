@@ -113,13 +113,7 @@ TEST(ImportMaterials, AssimpTestModelNormalAndMetallicRoughnessTextures) {
   EXPECT_EQ(metal_rough_textured, 1u);
 }
 
-class MaterialsFile : public ::testing::Test {
- protected:
-  void SetUp() override { dir_ = test::make_temp_dir("kdray-materials"); }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::filesystem::path dir_;
-};
+class MaterialsFile : public test::TempDirTest<> {};
 
 TEST_F(MaterialsFile, MaterialFieldsRoundTripInTheCurrentVersion) {
   Scene scene = test::make_quad_scene(true, true, true);

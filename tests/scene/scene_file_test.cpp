@@ -66,13 +66,7 @@ void expect_equal_scenes(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.content_hash, b.content_hash);
 }
 
-class SceneFile : public ::testing::TestWithParam<std::tuple<bool, bool, bool>> {
- protected:
-  void SetUp() override { directory_ = test::make_temp_dir("scenefile"); }
-  void TearDown() override { std::filesystem::remove_all(directory_); }
-  std::string path(const std::string& name) const { return (directory_ / name).string(); }
-  std::filesystem::path directory_;
-};
+class SceneFile : public test::TempDirTest<::testing::TestWithParam<std::tuple<bool, bool, bool>>> {};
 
 TEST_P(SceneFile, RoundTripKeepsEverything) {
   const auto [normals, uvs, texture] = GetParam();
@@ -117,7 +111,7 @@ TEST_F(SceneFile, RefusesToWriteAnInconsistentScene) {
   broken.indices[4] = 9;
   EXPECT_THROW(write_scene(path("broken.kdscene"), broken), Error);
   EXPECT_FALSE(std::filesystem::exists(path("broken.kdscene")));
-  EXPECT_TRUE(std::filesystem::is_empty(directory_)) << "no temporary file may be left behind";
+  EXPECT_TRUE(std::filesystem::is_empty(dir_)) << "no temporary file may be left behind";
 }
 
 TEST_F(SceneFile, MissingFileIsAnErrorNamingIt) {

@@ -1,5 +1,7 @@
 #include "brute_force.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -123,6 +125,16 @@ size_t count_disagreements(const Scene& scene, const std::vector<RayRecord>& ray
     if (reports != nullptr && reports->size() < max_reports) reports->push_back(why);
   }
   return count;
+}
+
+std::vector<HitRecord> trace_checked(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
+                                     const TraceOptions& options) {
+  std::vector<HitRecord> hits;
+  trace_closest(scene, tree, rays, hits, options);
+  std::vector<std::string> reports;
+  EXPECT_EQ(count_disagreements(scene, rays, hits, &reports), 0u) << "of " << rays.size() << " rays";
+  for (const std::string& report : reports) ADD_FAILURE() << report;
+  return hits;
 }
 
 }  // namespace kdray::test

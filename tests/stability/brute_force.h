@@ -2,7 +2,9 @@
 // the rule by which a k-d tree hit "agrees" with it.
 #pragma once
 
+#include <kdray/kdtree.h>
 #include <kdray/scene.h>
+#include <kdray/traverse.h>
 
 #include <kernels/kd_types.h>
 
@@ -48,5 +50,10 @@ double t_tolerance(const RayRecord& ray, double scene_magnitude, double t);
 // Checks every ray; returns the number that disagree and fills up to `max_reports` messages.
 size_t count_disagreements(const Scene& scene, const std::vector<RayRecord>& rays, const std::vector<HitRecord>& hits,
                            std::vector<std::string>* reports, size_t max_reports = 5);
+
+// Traces `rays` through `tree` and fails the running test where a hit disagrees with brute
+// force (reporting the first few); returns the hits.
+std::vector<HitRecord> trace_checked(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
+                                     const TraceOptions& options = {});
 
 }  // namespace kdray::test

@@ -64,18 +64,32 @@ void set_axis(RayRecord& ray, int axis, float origin, float direction) {
 
 // Traces with the short stack and with a one-entry stack; both must agree with brute force.
 void expect_agreement(const std::vector<RayRecord>& rays) {
-  const HardScene& hard = hard_scene();
   for (kdray::TraversalStack stack : {kdray::TraversalStack::Short, kdray::TraversalStack::Depth1}) {
+    SCOPED_TRACE(stack == kdray::TraversalStack::Short ? "short stack" : "depth-1 stack");
     kdray::TraceOptions options;
     options.stack = stack;
-    std::vector<HitRecord> hits;
-    kdray::trace_closest(hard.scene, hard.tree, rays, hits, options);
-    std::vector<std::string> reports;
-    const size_t wrong = kdray::test::count_disagreements(hard.scene, rays, hits, &reports);
-    EXPECT_EQ(wrong, 0u) << "of " << rays.size() << " rays, stack "
-                         << (stack == kdray::TraversalStack::Short ? "short" : "depth 1");
-    for (const std::string& report : reports) ADD_FAILURE() << report;
+    kdray::test::trace_checked(hard_scene().scene, hard_scene().tree, rays, options);
   }
+}
+
+// 40 rays of random origin (in the box) and direction for each split plane of the hard scene's
+// tree, each then placed against its plane by place(ray, axis, split, index of the ray).
+template <typename Place>
+std::vector<RayRecord> rays_at_split_planes(uint32_t seed, const Place& place) {
+  Rng rng(seed);
+  std::vector<RayRecord> rays;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (float split : kdray::test::split_positions(hard_scene().tree, axis)) {
+      for (int i = 0; i < 40; ++i) {
+        const Vec3 d = rng.direction();
+        RayRecord ray{rng.uniform(-1.5f, 1.5f), rng.uniform(-1.5f, 1.5f), rng.uniform(-1.5f, 1.5f), d.x, d.y, d.z, 0,
+                      INFINITY};
+        place(ray, axis, split, i);
+        rays.push_back(ray);
+      }
+    }
+  }
+  return rays;
 }
 
 }  // namespace
@@ -124,37 +138,16 @@ TEST(SplitPlanes, AxisAlignedRaysWithSignedZerosAgreeWithBruteForce) {
 }
 
 TEST(SplitPlanes, OriginsExactlyOnSplitPlanesAgreeWithBruteForce) {
-  Rng rng(2);
-  std::vector<RayRecord> rays;
-  for (int axis = 0; axis < 3; ++axis) {
-    for (float split : kdray::test::split_positions(hard_scene().tree, axis)) {
-      for (int i = 0; i < 40; ++i) {
-        const Vec3 d = rng.direction();
-        RayRecord ray{rng.uniform(-1.5f, 1.5f), rng.uniform(-1.5f, 1.5f), rng.uniform(-1.5f, 1.5f), d.x, d.y, d.z, 0,
-                      INFINITY};
-        (&ray.ox)[axis] = split;
-        rays.push_back(ray);
-      }
-    }
-  }
+  const std::vector<RayRecord> rays =
+      rays_at_split_planes(2, [](RayRecord& ray, int axis, float split, int) { (&ray.ox)[axis] = split; });
   ASSERT_GT(rays.size(), 1000u);
   expect_agreement(rays);
 }
 
 TEST(SplitPlanes, RaysLyingInSplitPlanesAgreeWithBruteForce) {
-  Rng rng(3);
-  std::vector<RayRecord> rays;
-  for (int axis = 0; axis < 3; ++axis) {
-    for (float split : kdray::test::split_positions(hard_scene().tree, axis)) {
-      for (int i = 0; i < 40; ++i) {
-        const Vec3 d = rng.direction();
-        RayRecord ray{rng.uniform(-1.5f, 1.5f), rng.uniform(-1.5f, 1.5f), rng.uniform(-1.5f, 1.5f), d.x, d.y, d.z, 0,
-                      INFINITY};
-        set_axis(ray, axis, split, i % 2 ? 0.0f : -0.0f);
-        rays.push_back(ray);
-      }
-    }
-  }
+  const std::vector<RayRecord> rays = rays_at_split_planes(3, [](RayRecord& ray, int axis, float split, int i) {
+    set_axis(ray, axis, split, i % 2 ? 0.0f : -0.0f);
+  });
   ASSERT_GT(rays.size(), 1000u);
   expect_agreement(rays);
 }

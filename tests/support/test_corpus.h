@@ -1,11 +1,13 @@
-// Locating shared corpus files and built tools from tests.
+// Locating shared corpus files and built tools from tests, and temporary directories for them.
 #pragma once
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <system_error>
 
 namespace kdray::test {
 
@@ -34,5 +36,40 @@ inline std::filesystem::path make_temp_dir(const std::string& stem) {
   if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
   return pattern;
 }
+
+// The running test suite's name, usable in a file name.
+inline std::string test_suite_stem() {
+  std::string name = ::testing::UnitTest::GetInstance()->current_test_suite()->name();
+  std::replace(name.begin(), name.end(), '/', '-');  // a parameterised suite's prefix
+  return name;
+}
+
+// A test with an empty directory of its own for the files it writes, named after the suite, made
+// before the test and removed after it. Base is ::testing::Test or a ::testing::TestWithParam.
+template <typename Base = ::testing::Test>
+class TempDirTest : public Base {
+ protected:
+  TempDirTest() : dir_(make_temp_dir(test_suite_stem())) {}
+  ~TempDirTest() override {
+    std::error_code ignored;
+    std::filesystem::remove_all(dir_, ignored);
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  const std::filesystem::path dir_;
+};
+
+// A test suite whose tests share one temporary directory, named after the suite, made before the
+// first test and removed after the last. Suite derives from SuiteDirTest<Suite>, so that each
+// suite keeps its own.
+template <typename Suite>
+class SuiteDirTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { dir_ = make_temp_dir(test_suite_stem()); }
+  static void TearDownTestSuite() { std::filesystem::remove_all(dir_); }
+  static std::string path(const std::string& name) { return (dir_ / name).string(); }
+
+  static inline std::filesystem::path dir_;
+};
 
 }  // namespace kdray::test

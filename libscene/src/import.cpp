@@ -40,8 +40,13 @@ void apply_orientation_and_scale(Scene& scene, const ImportOptions& options) {
   const bool rotate = options.up_axis == UpAxis::Z;
   auto place = [&](const Vec3& v) { return scaled(rotate ? to_y_up(v) : v, options.scale); };
   for (Vec3& p : scene.positions) p = place(p);
-  if (rotate)
+  if (rotate) {
     for (Vec3& n : scene.normals) n = to_y_up(n);
+    for (Tangent& t : scene.tangents) {
+      const Vec3 turned = to_y_up({t.x, t.y, t.z});
+      t = {turned.x, turned.y, turned.z, t.w};  // a rotation keeps the handedness
+    }
+  }
   for (Camera& camera : scene.cameras) {
     camera.position = place(camera.position);
     camera.target = place(camera.target);

@@ -45,6 +45,14 @@ Vec3 normalized(const aiVector3D& v) {
   return length > 0 ? Vec3{v.x / length, v.y / length, v.z / length} : Vec3{};
 }
 
+// An authored tangent frame in world space as the scene stores it: the unit tangent and the
+// side of cross(n, t) its bitangent lies on (a zero tangent counts as absent in MeshBuilder).
+Tangent world_tangent(const aiVector3D& normal, const aiVector3D& tangent, const aiVector3D& bitangent) {
+  const Vec3 t = normalized(tangent);
+  const float w = ((normal ^ tangent) * bitangent) < 0 ? -1.0f : 1.0f;
+  return {t.x, t.y, t.z, w};
+}
+
 SourceMaterial source_material(const aiMaterial& material) {
   SourceMaterial source;
   aiString name;
@@ -157,16 +165,23 @@ class AssimpConverter {
   }
 
   void add_mesh_instance(const aiMesh& mesh, const aiMatrix4x4& transform) {
+    const aiMatrix3x3 linear(transform);
     aiMatrix3x3 normal_transform(transform);
     normal_transform.Inverse().Transpose();
     std::vector<uint32_t> vertex(mesh.mNumVertices);
     const bool has_uvs = mesh.HasTextureCoords(0);
+    // glTF's TANGENT attribute arrives this way (Assimp 5.2 sets the bitangent to
+    // w * cross(normal, tangent)); other formats' importers fill them only when asked to compute.
+    const bool has_tangents = mesh.HasNormals() && mesh.HasTangentsAndBitangents();
     for (unsigned i = 0; i < mesh.mNumVertices; ++i) {
       std::optional<Vec3> normal;
       if (mesh.HasNormals()) normal = normalized(normal_transform * mesh.mNormals[i]);
       std::optional<Vec2> uv;
       if (has_uvs) uv = Vec2{mesh.mTextureCoords[0][i].x, mesh.mTextureCoords[0][i].y};
-      vertex[i] = builder_.add_vertex(to_vec3(transform * mesh.mVertices[i]), normal, uv);
+      std::optional<Tangent> tangent;
+      if (has_tangents) tangent = world_tangent(normal_transform * mesh.mNormals[i], linear * mesh.mTangents[i],
+                                                linear * mesh.mBitangents[i]);
+      vertex[i] = builder_.add_vertex(to_vec3(transform * mesh.mVertices[i]), normal, uv, tangent);
     }
     std::vector<uint32_t> polygon;
     std::vector<Vec3> corners;

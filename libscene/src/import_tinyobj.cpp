@@ -47,6 +47,7 @@ SourceMaterial source_material(const tinyobj::material_t& mtl) {
   source.opacity = mtl.dissolve;
   source.illum = mtl.illum;
   source.diffuse_texture = mtl.diffuse_texname;
+  source.normal_texture = mtl.normal_texname;  // MTL `norm`: a tangent-space normal map
   return source;
 }
 
@@ -124,6 +125,8 @@ class ObjConverter {
       Material material = map_material(source);
       if (!source.diffuse_texture.empty())
         material.diffuse_texture = textures.from_file((texture_directory / source.diffuse_texture).string(), source.diffuse_texture);
+      if (!source.normal_texture.empty())
+        material.normal_texture = textures.from_file((texture_directory / source.normal_texture).string(), source.normal_texture);
       scene.materials.push_back(material);
     }
   }

@@ -1,5 +1,7 @@
 #include "mesh_builder.h"
 
+#include <kdray/tangents.h>
+
 #include <array>
 #include <cmath>
 #include <limits>
@@ -7,7 +9,7 @@
 namespace kdray {
 namespace {
 
-constexpr uint8_t kHasNormal = 1, kHasUV = 2;
+constexpr uint8_t kHasNormal = 1, kHasUV = 2, kHasTangent = 4;
 
 bool is_finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -26,14 +28,19 @@ bool has_zero_area(const Vec3& a, const Vec3& b, const Vec3& c) {
 }  // namespace
 
 uint32_t MeshBuilder::add_vertex(const Vec3& position, const std::optional<Vec3>& normal,
-                                 const std::optional<Vec2>& uv) {
-  // A non-finite or zero normal, or a non-finite UV, counts as absent.
+                                 const std::optional<Vec2>& uv, const std::optional<Tangent>& tangent) {
+  // A non-finite or zero normal or tangent, or a non-finite UV, counts as absent.
   const bool usable_normal = normal && is_finite(*normal) && (normal->x != 0 || normal->y != 0 || normal->z != 0);
   const bool usable_uv = uv && std::isfinite(uv->u) && std::isfinite(uv->v);
+  const bool usable_tangent = tangent && is_finite({tangent->x, tangent->y, tangent->z}) &&
+                              (tangent->x != 0 || tangent->y != 0 || tangent->z != 0) &&
+                              (tangent->w == 1 || tangent->w == -1);
   positions_.push_back(position);
   normals_.push_back(usable_normal ? *normal : Vec3{});
   uvs_.push_back(usable_uv ? *uv : Vec2{});
-  attributes_.push_back(uint8_t((usable_normal ? kHasNormal : 0) | (usable_uv ? kHasUV : 0)));
+  tangents_.push_back(usable_tangent ? *tangent : Tangent{});
+  attributes_.push_back(
+      uint8_t((usable_normal ? kHasNormal : 0) | (usable_uv ? kHasUV : 0) | (usable_tangent ? kHasTangent : 0)));
   return static_cast<uint32_t>(positions_.size() - 1);
 }
 
@@ -67,19 +74,23 @@ void MeshBuilder::finish(Scene& scene) {
   }
   const bool keep_normals = any_attributes & kHasNormal;
   const bool keep_uvs = any_attributes & kHasUV;
+  const bool keep_tangents = any_attributes & kHasTangent;
   scene.positions.assign(kept, Vec3{});
   if (keep_normals) scene.normals.assign(kept, Vec3{});
   if (keep_uvs) scene.uvs.assign(kept, Vec2{});
+  if (keep_tangents) scene.tangents.assign(kept, Tangent{});
   for (size_t old = 0; old < new_index.size(); ++old) {
     const uint32_t to = new_index[old];
     if (to == kUnused) continue;
     scene.positions[to] = positions_[old];
     if (keep_normals) scene.normals[to] = normals_[old];
     if (keep_uvs) scene.uvs[to] = uvs_[old];
+    if (keep_tangents) scene.tangents[to] = tangents_[old];
   }
   scene.indices = std::move(indices_);
   scene.material_ids = std::move(material_ids_);
   if (keep_normals && !(all_attributes & kHasNormal)) fill_missing_normals(scene, new_index);
+  complete_tangents(scene);
 }
 
 // Missing normals get the area-weighted average of the normals of the triangles around them

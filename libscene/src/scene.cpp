@@ -67,9 +67,9 @@ Bounds scene_bounds(const Scene& scene) {
 
 // The hash covers, in this order, each part as (8-byte little-endian size, bytes): positions,
 // indices, material ids, normals, UVs, emissive triangles, then the encoded materials,
-// textures and cameras, then the encoded lights only when there are any, so that scenes without
-// lights keep the hash they had in format version 1 (formats/kdscene.md). Import statistics are
-// not content.
+// textures and cameras, then the encoded lights and the tangents only when there are any, so
+// that scenes without them keep the hash they had in format version 1 (formats/kdscene.md).
+// Import statistics are not content.
 uint64_t encoding::content_hash(const Scene& scene, const EncodedParts& parts) {
   std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(), &XXH3_freeState);
   XXH3_64bits_reset(state.get());
@@ -89,6 +89,7 @@ uint64_t encoding::content_hash(const Scene& scene, const EncodedParts& parts) {
   feed_text(parts.textures);
   feed_text(parts.cameras);
   if (!scene.lights.empty()) feed_text(parts.lights);
+  if (!scene.tangents.empty()) feed_array(scene.tangents);
   return XXH3_64bits_digest(state.get());
 }
 

@@ -2,6 +2,7 @@
 
 #include <kdray/container_file.h>
 #include <kdray/error.h>
+#include <kdray/tangents.h>
 
 #include "scene_encoding.h"
 
@@ -15,7 +16,7 @@ namespace {
 using namespace format;
 
 constexpr uint64_t kKnownFlags =
-    kSceneHasNormals | kSceneHasUVs | kSceneHasTextures | kSceneHasEmissive | kSceneHasLights;
+    kSceneHasNormals | kSceneHasUVs | kSceneHasTextures | kSceneHasEmissive | kSceneHasLights | kSceneHasTangents;
 
 bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -41,6 +42,15 @@ std::string first_inconsistency(const Scene& scene) {
     return std::to_string(scene.normals.size()) + " normals for " + std::to_string(vertices) + " vertices";
   if (!scene.uvs.empty() && scene.uvs.size() != vertices)
     return std::to_string(scene.uvs.size()) + " UVs for " + std::to_string(vertices) + " vertices";
+  if (!scene.tangents.empty() && scene.tangents.size() != vertices)
+    return std::to_string(scene.tangents.size()) + " tangents for " + std::to_string(vertices) + " vertices";
+  if (!scene.tangents.empty() && scene.uvs.empty()) return "tangents without UVs";
+  for (size_t v = 0; v < scene.tangents.size(); ++v) {
+    const Tangent& t = scene.tangents[v];
+    if (!finite({t.x, t.y, t.z}) || !(std::abs(t.x * t.x + t.y * t.y + t.z * t.z - 1) < 1e-3f) ||
+        (t.w != 1 && t.w != -1))
+      return "tangent " + std::to_string(v) + " is not a unit vector with handedness +1 or -1";
+  }
   // A branch-free maximum first (it vectorises, and loading 1M triangles is close to a file
   // read), then a search for the culprit only when there is one.
   if (any_at_least(scene.indices, vertices)) {
@@ -83,6 +93,7 @@ uint64_t flags_of(const Scene& scene) {
   if (!scene.textures.empty()) flags |= kSceneHasTextures;
   if (!scene.emissive_triangles.empty()) flags |= kSceneHasEmissive;
   if (!scene.lights.empty()) flags |= kSceneHasLights;
+  if (!scene.tangents.empty()) flags |= kSceneHasTangents;
   return flags;
 }
 
@@ -115,6 +126,7 @@ class SectionCollector {
       case kSceneTextures: return sized(textures, size, "textures");
       case kSceneInfo: return sized(info, size, "scene info");
       case kSceneLights: return sized(lights, size, "lights");
+      case kSceneTangents: return sized(scene_.tangents, size, "tangents");
       default: return nullptr;
     }
   }
@@ -140,7 +152,7 @@ class SectionCollector {
 
   std::string path_;
   Scene& scene_;
-  std::vector<bool> seen_ = std::vector<bool>(kSceneLights + 1, false);
+  std::vector<bool> seen_ = std::vector<bool>(kSceneTangents + 1, false);
 };
 
 }  // namespace
@@ -160,6 +172,7 @@ void write_scene(const std::string& path, const Scene& scene) {
   };
   if (!scene.normals.empty()) sections.push_back(array_section(kSceneNormals, scene.normals));
   if (!scene.uvs.empty()) sections.push_back(array_section(kSceneUVs, scene.uvs));
+  if (!scene.tangents.empty()) sections.push_back(array_section(kSceneTangents, scene.tangents));
   sections.push_back(text_section(kSceneMaterials, parts.materials));
   sections.push_back(text_section(kSceneCameras, parts.cameras));
   if (!scene.textures.empty()) sections.push_back(text_section(kSceneTextures, parts.textures));
@@ -184,7 +197,8 @@ Scene read_scene(const std::string& path) {
   if (flags & ~kKnownFlags) throw Error(path, "unknown flag bits in the header");
   const std::pair<uint64_t, uint32_t> optional_sections[] = {
       {kSceneHasNormals, kSceneNormals}, {kSceneHasUVs, kSceneUVs},
-      {kSceneHasTextures, kSceneTextures}, {kSceneHasEmissive, kSceneEmissive}, {kSceneHasLights, kSceneLights}};
+      {kSceneHasTextures, kSceneTextures}, {kSceneHasEmissive, kSceneEmissive}, {kSceneHasLights, kSceneLights},
+      {kSceneHasTangents, kSceneTangents}};
   for (const auto& [flag, section] : optional_sections)
     if (bool(flags & flag) != collector.has(section))
       throw Error(path, "header flags disagree with the sections present (section " + std::to_string(section) + ")");
@@ -198,6 +212,9 @@ Scene read_scene(const std::string& path) {
 
   const std::string problem = first_inconsistency(scene);
   if (!problem.empty()) throw Error(path, "inconsistent scene: " + problem);
+  // Files older than version 5 have no tangents: computed here, on the vertices the file's
+  // hashes and k-d tree describe.
+  if (scene.tangents.empty()) complete_tangents(scene, MirroredVertices::Keep);
   // The checksum covers the payload only: the header's own fields are checked here.
   if (contents.header.reserved0 != 0 || contents.header.reserved1 != 0) throw Error(path, "reserved header fields are not zero");
   // The header's hash is outside the checksum; its copy in scene info is inside. Recomputing

@@ -48,8 +48,8 @@ void print_summary(const Scene& scene, const std::string& output, const Timings&
   if (stats.dropped_degenerate + stats.dropped_non_finite > 0)
     std::printf(" (dropped %llu degenerate, %llu non-finite)", (unsigned long long)stats.dropped_degenerate,
                 (unsigned long long)stats.dropped_non_finite);
-  std::printf("\n  vertices   %zu%s%s\n", scene.positions.size(), scene.normals.empty() ? "" : ", normals",
-              scene.uvs.empty() ? "" : ", UVs");
+  std::printf("\n  vertices   %zu%s%s%s\n", scene.positions.size(), scene.normals.empty() ? "" : ", normals",
+              scene.uvs.empty() ? "" : ", UVs", scene.tangents.empty() ? "" : ", tangents");
   if (stats.ignored_points + stats.ignored_lines > 0)
     std::printf("  ignored    %llu points, %llu lines\n", (unsigned long long)stats.ignored_points,
                 (unsigned long long)stats.ignored_lines);

@@ -26,6 +26,7 @@ std::vector<std::string> optional_sections(uint64_t flags) {
   if (flags & kdray::format::kSceneHasTextures) names.push_back("textures");
   if (flags & kdray::format::kSceneHasEmissive) names.push_back("emissive");
   if (flags & kdray::format::kSceneHasLights) names.push_back("lights");
+  if (flags & kdray::format::kSceneHasTangents) names.push_back("tangents");
   return names;
 }
 

@@ -37,9 +37,9 @@ constexpr uint32_t kMaxSections = 64;
 // ---- .kdscene -------------------------------------------------------------------------
 constexpr char kSceneMagic[8] = {'K', 'D', 'S', 'C', 'E', 'N', 'E', '\0'};
 // Version 2 added punctual lights (kSceneLights), version 3 the metallic-roughness material and
-// its texture and alpha fields, version 4 the geometry hash in the scene info; version 1 to 3
-// files are still read.
-constexpr uint32_t kSceneVersion = 4;
+// its texture and alpha fields, version 4 the geometry hash in the scene info, version 5 the
+// per-vertex tangents (kSceneTangents); version 1 to 4 files are still read.
+constexpr uint32_t kSceneVersion = 5;
 constexpr uint32_t kSceneGeometryHashVersion = 4;  // the first version whose scene info records it
 
 enum SceneSection : uint32_t {
@@ -54,6 +54,7 @@ enum SceneSection : uint32_t {
   kSceneEmissive = 9,        // optional: uint32 triangle index per emissive triangle
   kSceneInfo = 10,           // cereal portable binary: SceneInfo (source file, import statistics)
   kSceneLights = 11,         // optional (version 2): cereal portable binary: std::vector<Light>
+  kSceneTangents = 12,       // optional (version 5): float32 x,y,z,w per vertex
 };
 
 enum SceneFlags : uint64_t {
@@ -62,6 +63,7 @@ enum SceneFlags : uint64_t {
   kSceneHasTextures = 1u << 2,
   kSceneHasEmissive = 1u << 3,
   kSceneHasLights = 1u << 4,
+  kSceneHasTangents = 1u << 5,
 };
 
 // ---- .kdtree --------------------------------------------------------------------------

@@ -1,6 +1,6 @@
 // The scene model: one world-space triangle mesh with per-triangle materials, optional
-// per-vertex normals and UVs, embedded textures, cameras and the list of emissive triangles.
-// Only what the source has is present: empty optional arrays mean "absent".
+// per-vertex normals, UVs and tangents, embedded textures, cameras and the list of emissive
+// triangles. Only what the source has is present: empty optional arrays mean "absent".
 #pragma once
 
 #include <kernels/pt_codes.h>
@@ -17,7 +17,12 @@ struct Vec3 {
 struct Vec2 {
   float u = 0, v = 0;
 };
-static_assert(sizeof(Vec3) == 12 && sizeof(Vec2) == 8, "stored as contiguous float arrays");
+// A tangent: the unit direction of +u in the surface, and in w the handedness (+1 or -1) that
+// makes w * cross(normal, tangent) the direction of +v.
+struct Tangent {
+  float x = 0, y = 0, z = 0, w = 0;
+};
+static_assert(sizeof(Vec3) == 12 && sizeof(Vec2) == 8 && sizeof(Tangent) == 16, "stored as contiguous float arrays");
 
 // The kernels' numbering (kernels/pt_codes.h), which is also the one .kdscene files store.
 enum class MaterialType : uint32_t {
@@ -118,6 +123,7 @@ struct Scene {
   std::vector<uint32_t> material_ids;  // one per triangle, into materials
   std::vector<Vec3> normals;           // per vertex, or empty
   std::vector<Vec2> uvs;               // per vertex, or empty
+  std::vector<Tangent> tangents;       // per vertex when a material has a normal map, or empty
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<Camera> cameras;         // at least one after import (a default framing camera)

@@ -26,6 +26,7 @@ inline PtSceneData pt_make_scene(PT_SCENE_ARGS) {
   scene.materials = materials;
   scene.normals = normals;
   scene.uvs = uvs;
+  scene.tangents = tangents;
   scene.textures = textures;
   scene.texels = texels;
   scene.lights = lights;

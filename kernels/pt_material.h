@@ -39,33 +39,31 @@ inline float2 pt_triangle_uv(__global const float* uvs, __global const kd_u32* i
 #endif
 
 #ifdef KD_FEATURE_NORMAL_MAP
-/* The normal map's normal in world space. The tangent frame is the triangle's own (dp/du, dp/dv
- * from its positions and UVs, made orthogonal to the shading normal n): per triangle, where
- * MikkTSpace would smooth tangents across vertices, so seams between triangles whose UV layouts
- * disagree can show. */
-inline float3 pt_normal_mapped(float3 n, float3 p0, float3 p1, float3 p2, float2 uv0, float2 uv1, float2 uv2,
-                               float3 mapped) {
-  float2 d1 = uv1 - uv0, d2 = uv2 - uv0;
-  float det = d1.x * d2.y - d1.y * d2.x;
-  if (det == 0.0f) return n;
-  float3 e1 = p1 - p0, e2 = p2 - p0;
-  float3 dpdu = (e1 * d2.y - e2 * d1.y) / det;
-  float3 dpdv = (e2 * d1.x - e1 * d2.x) / det;
-  float3 t = dpdu - dot(dpdu, n) * n;
+/* The normal map's normal in world space, in the frame of the scene's per-vertex tangents
+ * (formats/kdscene.md, "Tangents"; x, y, z, w per vertex): the tangent interpolated at barycentric
+ * (u, v) and made orthogonal to the shading normal n, and the bitangent w * cross(n, t) towards +v.
+ * Tangents are smooth across the triangles that share a vertex, so no seam shows between them.
+ * The handedness w was set for the normal on the side the triangle winds counter-clockwise:
+ * `side` is -1 when n faces the other way (a back face), which keeps the bitangent on +v. */
+inline float3 pt_normal_mapped(float3 n, __global const float* tangents, __global const kd_u32* idx, float u,
+                               float v, float side, float3 mapped) {
+  float4 tw = (1.0f - u - v) * vload4(idx[0], tangents) + u * vload4(idx[1], tangents) + v * vload4(idx[2], tangents);
+  float3 t = tw.xyz - dot(tw.xyz, n) * n;
   if (!(dot(t, t) > 0.0f)) return n;
   t = normalize(t);
-  float3 b = cross(n, t);
-  if (dot(b, dpdv) < 0.0f) b = -b; /* mirrored UVs */
+  float3 b = (tw.w < 0.0f ? -side : side) * cross(n, t);
   float3 mapped_n = mapped.x * t + mapped.y * b + mapped.z * n;
   return dot(mapped_n, mapped_n) > 0.0f ? normalize(mapped_n) : n;
 }
 #endif
 
 /* Applies the material's textures at a hit: base colour, metallic and roughness into *m and
- * *color, the normal map into *n (kept on the side of ng_facing). */
-inline void pt_apply_textures(PtMaterial* m, float3* color, float3* n, float3 ng_facing, __global const float* uvs,
+ * *color, the normal map into *n (kept on the side of ng_facing; ng is the triangle's
+ * counter-clockwise normal). */
+inline void pt_apply_textures(PtMaterial* m, float3* color, float3* n, float3 ng, float3 ng_facing,
+                              __global const float* uvs, __global const float* tangents,
                               __global const PtTexture* textures, __global const float4* texels,
-                              __global const kd_u32* idx, float u, float v, float3 p0, float3 p1, float3 p2) {
+                              __global const kd_u32* idx, float u, float v) {
 #ifdef KD_FEATURE_TEXTURES
   float2 uv = pt_triangle_uv(uvs, idx, u, v);
   if (m->texture >= 0) *color *= pt_texture_lookup(textures, texels, m->texture, uv).xyz;
@@ -79,14 +77,14 @@ inline void pt_apply_textures(PtMaterial* m, float3* color, float3* n, float3 ng
 #ifdef KD_FEATURE_NORMAL_MAP
   if (m->normal_texture >= 0) {
     float3 mapped = 2.0f * pt_texture_lookup(textures, texels, m->normal_texture, uv).xyz - 1.0f;
-    float3 mn = pt_normal_mapped(*n, p0, p1, p2, vload2(idx[0], uvs), vload2(idx[1], uvs), vload2(idx[2], uvs), mapped);
+    float3 mn = pt_normal_mapped(*n, tangents, idx, u, v, dot(ng, ng_facing) > 0.0f ? 1.0f : -1.0f, mapped);
     /* A mapped normal may not face away from the viewer's side of the surface. */
     *n = dot(mn, ng_facing) > 1e-4f ? mn : *n;
   }
 #endif
 #endif
-  (void)m, (void)color, (void)n, (void)ng_facing, (void)uvs, (void)textures, (void)texels, (void)idx;
-  (void)u, (void)v, (void)p0, (void)p1, (void)p2;
+  (void)m, (void)color, (void)n, (void)ng, (void)ng_facing, (void)uvs, (void)tangents, (void)textures, (void)texels;
+  (void)idx, (void)u, (void)v;
 }
 
 #ifdef KD_FEATURE_EMISSIVE_TEXTURE

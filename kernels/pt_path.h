@@ -26,6 +26,7 @@ typedef struct PtSceneData {
   __global const PtMaterial* materials;
   __global const float* normals;  /* KD_FEATURE_NORMALS */
   __global const float* uvs;      /* KD_FEATURE_TEXTURES */
+  __global const float* tangents; /* KD_FEATURE_NORMAL_MAP: x, y, z, w per vertex */
   __global const PtTexture* textures;
   __global const float4* texels;
   __global const PtLight* lights;
@@ -304,7 +305,8 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
   }
 #endif
   float3 color = vload3(0, m.base_color);
-  pt_apply_textures(&m, &color, &n, ng_facing, scene->uvs, scene->textures, scene->texels, idx, hit.u, hit.v, p0, p1, p2);
+  pt_apply_textures(&m, &color, &n, ng, ng_facing, scene->uvs, scene->tangents, scene->textures, scene->texels, idx,
+                    hit.u, hit.v);
   if (k == 0) {
     path->albedo = (float4)(color, 0.0f);
     path->normal = (float4)(n, 0.0f);

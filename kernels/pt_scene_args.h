@@ -16,6 +16,7 @@
   SHADING(PtMaterial, materials)            \
   SHADING(float, normals)                   \
   SHADING(float, uvs)                       \
+  SHADING(float, tangents)                  \
   SHADING(PtTexture, textures)              \
   SHADING(float4, texels)                   \
   SHADING(PtLight, lights)                  \

@@ -1,6 +1,7 @@
 // Scene and tree upload (see device_scene.h).
 #include "device_scene.h"
 
+#include <kdray/tangents.h>
 #include <kdray/traverse.h>
 #include <kdray/util.h>
 
@@ -70,6 +71,8 @@ DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree&
   device.material_ids = upload_vector(runtime, scene.material_ids);
   device.normals = upload_vector(runtime, scene.normals);
   device.uvs = upload_vector(runtime, scene.uvs);
+  // Files carry tangents when they need them; a scene made in memory may not.
+  device.tangents = upload_vector(runtime, scene.tangents.empty() ? tangents_on_vertices(scene) : scene.tangents);
 
   // Colour textures are sRGB-encoded, normal and metallic-roughness maps are data: a texture
   // gets one device copy per way it is read.

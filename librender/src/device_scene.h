@@ -19,7 +19,7 @@ struct DeviceGeometry {
 
 struct DeviceScene {
   DeviceGeometry geometry;
-  cl::Buffer material_ids, materials, normals, uvs, textures, texels, lights;
+  cl::Buffer material_ids, materials, normals, uvs, tangents, textures, texels, lights;
   cl::Buffer env_texels, env_cdf;  // kernels/pt_environment.h
   cl::Buffer punctuals;            // PtPunctual per Scene::lights entry
   uint32_t light_count = 0;

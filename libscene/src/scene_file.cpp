@@ -214,7 +214,7 @@ Scene read_scene(const std::string& path) {
   if (!problem.empty()) throw Error(path, "inconsistent scene: " + problem);
   // Files older than version 5 have no tangents: computed here, on the vertices the file's
   // hashes and k-d tree describe.
-  if (scene.tangents.empty()) complete_tangents(scene, MirroredVertices::Keep);
+  if (scene.tangents.empty()) scene.tangents = tangents_on_vertices(scene);
   // The checksum covers the payload only: the header's own fields are checked here.
   if (contents.header.reserved0 != 0 || contents.header.reserved1 != 0) throw Error(path, "reserved header fields are not zero");
   // The header's hash is outside the checksum; its copy in scene info is inside. Recomputing

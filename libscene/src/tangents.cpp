@@ -126,24 +126,8 @@ double corner_angle(const Scene& scene, const uint32_t* corner, int c) {
   return std::acos(std::clamp(dot(a, b), -1.0, 1.0));
 }
 
-}  // namespace
-
-bool scene_needs_tangents(const Scene& scene) {
-  return !scene.uvs.empty() && std::any_of(scene.materials.begin(), scene.materials.end(),
-                                           [](const Material& m) { return m.normal_texture >= 0; });
-}
-
-void complete_tangents(Scene& scene, MirroredVertices mirrored) {
-  if (!scene_needs_tangents(scene)) {
-    scene.tangents.clear();
-    return;
-  }
-  if (scene.tangents.empty()) scene.tangents.assign(scene.positions.size(), Tangent{});
-  std::vector<bool> missing(scene.positions.size());
-  for (size_t v = 0; v < missing.size(); ++v) missing[v] = scene.tangents[v].w == 0;
-  if (std::none_of(missing.begin(), missing.end(), [](bool m) { return m; })) return;
-
-  if (mirrored == MirroredVertices::Split) split_mirrored_vertices(scene, missing);
+// Computes the tangents of the vertices marked missing into `tangents` (one per vertex).
+void compute_missing(const Scene& scene, const std::vector<bool>& missing, std::vector<Tangent>& tangents) {
   const std::vector<D3> normals = vertex_normals(scene);
   std::vector<D3> sum_dpdu(scene.positions.size(), D3{0, 0, 0}), sum_dpdv(scene.positions.size(), D3{0, 0, 0});
   for (size_t t = 0; t < scene.triangle_count(); ++t) {
@@ -164,8 +148,38 @@ void complete_tangents(Scene& scene, MirroredVertices mirrored) {
     D3 t = unit_or_zero(in_plane(sum_dpdu[v], n));
     if (dot(t, t) == 0) t = any_perpendicular(n);
     const float w = dot(cross(n, t), sum_dpdv[v]) < 0 ? -1.0f : 1.0f;
-    scene.tangents[v] = {float(t[0]), float(t[1]), float(t[2]), w};
+    tangents[v] = {float(t[0]), float(t[1]), float(t[2]), w};
   }
+}
+
+}  // namespace
+
+bool scene_needs_tangents(const Scene& scene) {
+  return !scene.uvs.empty() && std::any_of(scene.materials.begin(), scene.materials.end(),
+                                           [](const Material& m) { return m.normal_texture >= 0; });
+}
+
+void complete_tangents(Scene& scene) {
+  if (!scene_needs_tangents(scene)) {
+    scene.tangents.clear();
+    return;
+  }
+  if (scene.tangents.empty()) scene.tangents.assign(scene.positions.size(), Tangent{});
+  std::vector<bool> missing(scene.positions.size());
+  for (size_t v = 0; v < missing.size(); ++v) missing[v] = scene.tangents[v].w == 0;
+  if (std::none_of(missing.begin(), missing.end(), [](bool m) { return m; })) return;
+  split_mirrored_vertices(scene, missing);
+  compute_missing(scene, missing, scene.tangents);
+}
+
+std::vector<Tangent> tangents_on_vertices(const Scene& scene) {
+  if (!scene_needs_tangents(scene)) return {};
+  std::vector<Tangent> tangents = scene.tangents;
+  if (tangents.empty()) tangents.assign(scene.positions.size(), Tangent{});
+  std::vector<bool> missing(tangents.size());
+  for (size_t v = 0; v < missing.size(); ++v) missing[v] = tangents[v].w == 0;
+  compute_missing(scene, missing, tangents);
+  return tangents;
 }
 
 }  // namespace kdray

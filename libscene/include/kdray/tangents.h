@@ -19,10 +19,13 @@ bool scene_needs_tangents(const Scene& scene);
 // n. A vertex shared by triangles whose UVs are mirrored against each other (opposite signs of
 // the UV area) is split in two, as MikkTSpace does, so that each copy has one handedness. The
 // normal is the vertex normal, or the area-weighted one of the triangles around it in a
-// scene without normals. Keep leaves the vertices as they are (reading a file older
-// than tangents, whose hashes and k-d tree describe its vertices): a vertex shared by mirrored
-// triangles then takes the handedness of most of the angle around it.
-enum class MirroredVertices { Split, Keep };
-void complete_tangents(Scene& scene, MirroredVertices mirrored = MirroredVertices::Split);
+// scene without normals.
+void complete_tangents(Scene& scene);
+
+// The same tangents on the scene's vertices as they are, for a scene that has none on file (a
+// file older than tangents, whose hashes and k-d tree describe its vertices, or a scene made in
+// memory): nothing is split, so a vertex shared by mirrored triangles takes the handedness of
+// most of the angle around it. Empty when the scene does not need tangents.
+std::vector<Tangent> tangents_on_vertices(const Scene& scene);
 
 }  // namespace kdray

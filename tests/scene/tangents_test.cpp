@@ -10,6 +10,8 @@
 #include <kdray/scene_file.h>
 #include <kdray/tangents.h>
 
+#include <test_corpus.h>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -173,18 +175,7 @@ TEST(Tangents, UpAxisRotationTurnsAuthoredTangents) {
     }
 }
 
-class TangentFiles : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("kdray-tangents-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::filesystem::path dir_;
-};
+class TangentFiles : public test::TempDirTest<> {};
 
 TEST_F(TangentFiles, TangentsRoundTripAndEnterTheContentHash) {
   const Scene scene = import_scene(kTangentsGltf, {});

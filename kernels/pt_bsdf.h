@@ -1,6 +1,7 @@
 /* Materials: Lambertian diffuse (also the reflection of emitters), perfect mirror, GGX rough
  * conductor (Walter et al. 2007), smooth dielectric and glTF metallic-roughness (a GGX conductor
- * blended with a diffuse base under a dielectric GGX coat, as Mitsuba's roughplastic). OpenCL C only.
+ * blended with a diffuse base under a rough dielectric GGX coat, as Mitsuba 3's roughplastic, with
+ * the coat's tables of kernels/pt_coat.h). OpenCL C only.
  * Conventions: n is the shading normal turned to the side of wo; wo and wi point away from the
  * surface; "weight" is f * |cos| / pdf. Features a scene lacks are compiled out. */
 #ifndef PT_BSDF_H
@@ -8,6 +9,9 @@
 
 #include "pt_sampling.h"
 #include "pt_types.h"
+#ifdef KD_FEATURE_METALLIC_ROUGHNESS
+#include "pt_coat.h"
+#endif
 
 typedef struct PtBsdfSample {
   float3 wi;
@@ -91,25 +95,20 @@ inline float pt_fresnel_coat(float cos_i, float eta) {
   if (sin2_t >= 1.0f) return 1.0f;
   return pt_fresnel_dielectric(cos_i, sqrt(1.0f - sin2_t), 1.0f, eta);
 }
-/* Diffuse reflectance of the coat's inside (light from the base leaving into air): the fit of
- * Egan and Hilgeman (1973) in the relative index 1/eta, as Mitsuba uses for eta < 1. */
-inline float pt_fresnel_diffuse_inside(float eta) {
-  float x = 1.0f / eta;
-  return -1.4399f * x * x + 0.7099f * x + 0.6681f + 0.0636f / x;
-}
 /* Probability of sampling the GGX lobes (metal and coat share the distribution): the metal's
- * weight plus the coat's share of what the plastic reflects at wo. */
-inline float pt_metal_rough_ggx_probability(const PtMaterial* m, float3 color, float cos_o) {
-  float coat = pt_fresnel_coat(cos_o, m->ior);
-  float diffuse = (1.0f - coat) * pt_luminance(color);
+ * weight plus the coat's share of what the plastic reflects at wo, whose coat transmits t_o. */
+inline float pt_metal_rough_ggx_probability(const PtMaterial* m, float3 color, float t_o) {
+  float coat = 1.0f - t_o;
+  float diffuse = t_o * pt_luminance(color);
   float p_coat = coat + diffuse > 0.0f ? coat / (coat + diffuse) : 1.0f;
   return m->metallic + (1.0f - m->metallic) * p_coat;
 }
-/* f * cos(wi) and pdf of glTF metallic-roughness. The plastic part is Mitsuba's roughplastic
- * (linear mode) with the smooth interface's transmittance 1 - F for both directions: the base's
- * light leaves through the coat as (1 - F(wi)) (1 - F(wo)) / (eta^2 (1 - F_dr,inside)), so a white
- * base under a smooth coat reflects exactly 1 in total. */
-inline float3 pt_metal_rough_eval(const PtMaterial* m, float3 color, float3 n, float3 wo, float3 wi, float* pdf) {
+/* f * cos(wi) and pdf of glTF metallic-roughness. The plastic part is Mitsuba 3's roughplastic
+ * (linear mode): the coat's GGX reflection plus the base's light, which enters and leaves through
+ * the rough interface with its transmittances t_i and t_o and is reflected back inside with
+ * F_int (kernels/pt_coat.h): color cos(wi) / pi * t_i t_o / (eta^2 (1 - F_int)). */
+inline float3 pt_metal_rough_eval(const PtMaterial* m, __global const float* coat_tables, float3 color, float3 n,
+                                  float3 wo, float3 wi, float* pdf) {
   float ggx_pdf, o_h;
   float common = pt_ggx_eval_common(m->roughness, n, wo, wi, &ggx_pdf, &o_h);
   float cos_o = dot(n, wo), cos_i = dot(n, wi);
@@ -118,9 +117,12 @@ inline float3 pt_metal_rough_eval(const PtMaterial* m, float3 color, float3 n, f
   float eta = m->ior;
   float3 metal = pt_schlick(color, o_h) * common;
   float coat = pt_fresnel_coat(o_h, eta) * common;
-  float transmit = (1.0f - pt_fresnel_coat(cos_i, eta)) * (1.0f - pt_fresnel_coat(cos_o, eta));
-  float3 base = color * (cos_i * PT_INV_PI * transmit / (eta * eta * (1.0f - pt_fresnel_diffuse_inside(eta))));
-  float p_ggx = pt_metal_rough_ggx_probability(m, color, cos_o);
+  PtCoatRow row = pt_coat_row(coat_tables, eta, m->roughness);
+  float t_o = pt_coat_transmittance(coat_tables, row, cos_o);
+  float transmit = pt_coat_transmittance(coat_tables, row, cos_i) * t_o;
+  float3 base = color * (cos_i * PT_INV_PI * transmit /
+                         (eta * eta * (1.0f - pt_coat_internal_reflectance(coat_tables, row))));
+  float p_ggx = pt_metal_rough_ggx_probability(m, color, t_o);
   *pdf = p_ggx * ggx_pdf + (1.0f - p_ggx) * cos_i * PT_INV_PI;
   return m->metallic * metal + (1.0f - m->metallic) * (coat + base);
 }
@@ -128,11 +130,14 @@ inline float3 pt_metal_rough_eval(const PtMaterial* m, float3 color, float3 n, f
 
 inline int pt_is_delta(uint type) { return type == PT_MIRROR || type == PT_DIELECTRIC; }
 
-/* f * |cos(wi)| for the non-delta lobes, and the pdf pt_bsdf_sample would give wi. */
-inline float3 pt_bsdf_eval(const PtMaterial* m, float3 color, float3 n, float3 wo, float3 wi, float* pdf) {
+/* f * |cos(wi)| for the non-delta lobes, and the pdf pt_bsdf_sample would give wi. coat_tables:
+ * kernels/pt_coat.h, read by metallic-roughness materials only. */
+inline float3 pt_bsdf_eval(const PtMaterial* m, __global const float* coat_tables, float3 color, float3 n, float3 wo,
+                           float3 wi, float* pdf) {
 #ifdef KD_FEATURE_METALLIC_ROUGHNESS
-  if (m->type == PT_METALLIC_ROUGHNESS) return pt_metal_rough_eval(m, color, n, wo, wi, pdf);
+  if (m->type == PT_METALLIC_ROUGHNESS) return pt_metal_rough_eval(m, coat_tables, color, n, wo, wi, pdf);
 #endif
+  (void)coat_tables;
 #ifdef KD_FEATURE_GLOSSY
   if (m->type == PT_ROUGH_CONDUCTOR) return pt_ggx_eval(color, m->roughness, n, wo, wi, pdf);
 #endif
@@ -147,8 +152,8 @@ inline float3 pt_bsdf_eval(const PtMaterial* m, float3 color, float3 n, float3 w
 
 /* entering: wo is on the front (winding) side, which for a dielectric is the outside. u_lobe
  * picks the lobe of layered materials. */
-inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, float3 color, float3 n, float3 wo, int entering,
-                                   float u1, float u2, float u_lobe) {
+inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, __global const float* coat_tables, float3 color, float3 n,
+                                   float3 wo, int entering, float u1, float u2, float u_lobe) {
   PtBsdfSample s;
   s.is_delta = 0;
   s.transmits = 0;
@@ -193,17 +198,20 @@ inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, float3 color, float3 n, 
 #endif
 #ifdef KD_FEATURE_METALLIC_ROUGHNESS
   if (m->type == PT_METALLIC_ROUGHNESS) {
-    if (u_lobe < pt_metal_rough_ggx_probability(m, color, dot(n, wo)))
+    PtCoatRow row = pt_coat_row(coat_tables, m->ior, m->roughness);
+    float t_o = pt_coat_transmittance(coat_tables, row, dot(n, wo));
+    if (u_lobe < pt_metal_rough_ggx_probability(m, color, t_o))
       s.wi = pt_ggx_sample_wi(m->roughness, n, wo, u1, u2);
     else
       s.wi = pt_sample_cosine(n, u1, u2);
-    float3 f_cos = pt_metal_rough_eval(m, color, n, wo, s.wi, &s.pdf);
+    float3 f_cos = pt_metal_rough_eval(m, coat_tables, color, n, wo, s.wi, &s.pdf);
     s.weight = s.pdf > 0.0f ? f_cos / s.pdf : (float3)(0.0f);
     return s;
   }
 #endif
   (void)entering;
   (void)u_lobe;
+  (void)coat_tables;
   s.wi = pt_sample_cosine(n, u1, u2);
   s.pdf = fmax(dot(n, s.wi), 0.0f) * PT_INV_PI;
   s.weight = s.pdf > 0.0f ? color : (float3)(0.0f);

@@ -33,6 +33,7 @@ inline PtSceneData pt_make_scene(PT_SCENE_ARGS) {
   scene.env_texels = env_texels;
   scene.env_cdf = env_cdf;
   scene.punctuals = punctuals;
+  scene.coat_tables = coat_tables;
   return scene;
 }
 #define PT_MAKE_SCENE() pt_make_scene(PT_SCENE_BUFFERS(PT_SCENE_ARG_NAME, PT_SCENE_ARG_NAME) params)

@@ -22,6 +22,7 @@
   SHADING(PtLight, lights)                  \
   SHADING(float, env_texels)                \
   SHADING(float, env_cdf)                   \
-  SHADING(PtPunctual, punctuals)
+  SHADING(PtPunctual, punctuals)            \
+  SHADING(float, coat_tables)
 
 #endif /* PT_SCENE_ARGS_H */

@@ -1,6 +1,7 @@
 // Scene and tree upload (see device_scene.h).
 #include "device_scene.h"
 
+#include <kdray/coat_tables.h>
 #include <kdray/tangents.h>
 #include <kdray/traverse.h>
 #include <kdray/util.h>
@@ -112,6 +113,10 @@ DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree&
     materials.push_back(pm);
   }
   device.materials = upload_vector(runtime, materials);
+  std::vector<float> coat_etas;
+  for (const PtMaterial& m : materials)
+    if (m.type == static_cast<kd_u32>(MaterialType::MetallicRoughness)) coat_etas.push_back(m.ior);
+  device.coat_tables = upload_vector(runtime, coat_etas.empty() ? std::vector<float>() : build_coat_tables(coat_etas));
   device.textures = upload_vector(runtime, textures);
   device.texels = upload_vector(runtime, texels);
 

@@ -22,6 +22,7 @@ struct DeviceScene {
   cl::Buffer material_ids, materials, normals, uvs, tangents, textures, texels, lights;
   cl::Buffer env_texels, env_cdf;  // kernels/pt_environment.h
   cl::Buffer punctuals;            // PtPunctual per Scene::lights entry
+  cl::Buffer coat_tables;          // kernels/pt_coat.h, for the metallic-roughness materials' etas
   uint32_t light_count = 0;
   uint32_t punctual_count = 0;
   float light_area_pdf_scale = 0;  // 1 / sum(luminance(Le) * area)

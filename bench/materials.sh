@@ -1,9 +1,11 @@
 #!/bin/sh
 # Materials of real assets (issue "Light real assets"), measured against Mitsuba 3 and the baseline:
 #  1. samples/gltf_scene.py's glTF, lit by its point light, against Mitsuba 3 (bench/gltf_mitsuba.py,
-#     a `point` emitter of the same W/sr): channel means, the all-metal variant (materials both
-#     model alike) and the full scene (glTF plastics: kdray's coat against Mitsuba's roughplastic).
-#  2. Mitsuba's roughplastic diffuse term against kdray's at several roughnesses (BSDF evaluations).
+#     a `point` emitter of the same W/sr): channel means, whole image and per material, of the
+#     all-metal variant, the scene as authored (glTF plastics: kdray's coat against Mitsuba's
+#     roughplastic) and the authored scene without its normal map.
+#  2. Mitsuba's roughplastic diffuse term against kdray's at several roughnesses (BSDF evaluations;
+#     kdray's from bench/coat_bench, which also times building the coat's tables).
 #  3. An emitter-only Cornell box: kernel options and render time against a baseline kdrender
 #     (one that reads version 2 scenes), interleaved, medians of 5.
 # usage: bench/materials.sh BUILD_DIR [BASELINE_BUILD_DIR] [MITSUBA_PYTHON]
@@ -18,35 +20,61 @@ median() { sort -n | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 seconds() { grep render_seconds | grep -o '[0-9.]*'; }
 SIZE="--width 96 --height 96 --spp 256 --max-bounces 8"
 
-for variant in metal plastic; do
+# The flat variant is the authored scene without its one normal map (the ridged box's), made from
+# copies of the two scene scripts: it tells the plastics' agreement from the normal map's.
+mkdir -p "$WORK/flat/bench" "$WORK/flat/samples"
+cp "$HERE/gltf_mitsuba.py" "$WORK/flat/bench/"
+sed 's/, "normal_texture": "ridges.png"}/}/' "$HERE/../samples/gltf_scene.py" > "$WORK/flat/samples/gltf_scene.py"
+if grep -q 'normal_texture.*ridges' "$WORK/flat/samples/gltf_scene.py"; then
+  echo "materials.sh: the ridged box's normal map is no longer where the flat variant removes it" >&2
+  exit 1
+fi
+for variant in metal plastic flat; do
   flag=$([ $variant = metal ] && echo --metal || true)
-  /usr/bin/python3 "$HERE/../samples/gltf_scene.py" "$WORK/$variant" $flag
+  dir=$([ $variant = flat ] && echo "$WORK/flat" || echo "$HERE/..")
+  /usr/bin/python3 "$dir/samples/gltf_scene.py" "$WORK/$variant" $flag
   "$BUILD/tools/kdconvert/kdconvert" "$WORK/$variant/textured-scene.gltf" "$WORK/$variant.kdscene" > /dev/null
   "$BUILD/tools/kdbuild/kdbuild" "$WORK/$variant.kdscene" "$WORK/$variant.kdtree" > /dev/null
-  "$BUILD/tools/kdrender/kdrender" "$WORK/$variant.kdscene" "$WORK/$variant.kdtree" -o "$WORK/$variant-kd.exr" $SIZE --quiet
-  "$MITSUBA" "$HERE/gltf_mitsuba.py" "$WORK/$variant" "$WORK/$variant-mi.exr" $SIZE $flag > /dev/null
-  echo "== glTF with a point light, $variant variant, 96x96, 256 spp, 8 bounces"
-  for image in kd mi; do echo "$image: $(oiiotool --stats "$WORK/$variant-$image.exr" | grep 'Stats Avg' | head -1)"; done
-done
-
-echo "== roughplastic diffuse term: Mitsuba / kdray (rows: alpha; columns: theta_o 0.5, 30, 60, 80 deg, theta_i 0)"
-"$MITSUBA" - <<'PY'
-import math
+  "$BUILD/tools/kdrender/kdrender" "$WORK/$variant.kdscene" "$WORK/$variant.kdtree" -o "$WORK/$variant-kd.exr" $SIZE --aov albedo --quiet
+  "$MITSUBA" "$dir/bench/gltf_mitsuba.py" "$WORK/$variant" "$WORK/$variant-mi.exr" $SIZE $flag > /dev/null
+  echo "== glTF with a point light, $variant variant, 96x96, 256 spp, 8 bounces: channel means, kdray / Mitsuba"
+  # Per material: pixels grouped by kdray's first-hit albedo (rounded), the largest groups.
+  "$MITSUBA" - "$WORK/$variant-kd.exr" "$WORK/$variant-mi.exr" <<'PY'
+import sys
+import numpy as np
 import mitsuba as mi
 mi.set_variant("scalar_rgb")
-def fresnel(c, eta):
-    s2 = (1 - c * c) / eta ** 2
-    if s2 >= 1:
-        return 1.0
-    ct = math.sqrt(1 - s2)
-    rs, rp = (c - eta * ct) / (c + eta * ct), (eta * c - ct) / (eta * c + ct)
-    return 0.5 * (rs * rs + rp * rp)
-def kdray_diffuse(ci, co, eta=1.5):  # kernels/pt_bsdf.h, pt_metal_rough_eval's base term, albedo 1
-    x = 1 / eta
-    fdr = -1.4399 * x * x + 0.7099 * x + 0.6681 + 0.0636 / x
-    return ci / math.pi * (1 - fresnel(ci, eta)) * (1 - fresnel(co, eta)) / (eta * eta * (1 - fdr))
+kd, ref = np.array(mi.Bitmap(sys.argv[1])), np.array(mi.Bitmap(sys.argv[2]))[:, :, :3]
+image, albedo = kd[:, :, :3], kd[:, :, 3:6]
+print("kdray   %.6f %.6f %.6f" % tuple(image.mean((0, 1))))
+print("Mitsuba %.6f %.6f %.6f" % tuple(ref.mean((0, 1))))
+print("ratio   %.4f %.4f %.4f" % tuple(image.mean((0, 1)) / ref.mean((0, 1))))
+groups = {}
+for y, x in np.ndindex(albedo.shape[:2]):
+    groups.setdefault(tuple(np.round(albedo[y, x], 1)), []).append((y, x))
+for key, pixels in sorted(groups.items(), key=lambda g: -len(g[1]))[:7]:
+    ys, xs = map(list, zip(*pixels))
+    if ref[ys, xs].sum() > 0:
+        print("  albedo %.1f %.1f %.1f, %4d pixels: ratio %.4f %.4f %.4f" % (key + (len(pixels),) + tuple(image[ys, xs].sum(0) / ref[ys, xs].sum(0))))
+PY
+done
+
+echo "== roughplastic diffuse term: Mitsuba / kdray (rows: alpha; columns: theta_o 0.5, 30, 60, 80 deg, theta_i 0; eta 1.5)"
+"$BUILD/bench/coat_bench" 1.5 0.01,0.09,0.25,0.49,1.0 0.5,30,60,80 > "$WORK/kd_diffuse.txt"
+tail -1 "$WORK/kd_diffuse.txt"
+"$MITSUBA" - "$WORK/kd_diffuse.txt" <<'PY'
+import math
+import sys
+import mitsuba as mi
+mi.set_variant("scalar_rgb")
+kdray = {}  # (alpha, degrees) -> kdray's diffuse f for a white base (bench/coat_bench.cpp)
+for line in open(sys.argv[1]):
+    fields = line.split()
+    if len(fields) == 3:
+        kdray[(float(fields[0]), float(fields[1]))] = float(fields[2])
 for alpha in (0.01, 0.09, 0.25, 0.49, 1.0):
     plastic = lambda d: mi.load_dict({"type": "roughplastic", "alpha": alpha, "distribution": "ggx", "nonlinear": False,
+                                      "int_ior": 1.5, "ext_ior": 1.0,
                                       "diffuse_reflectance": {"type": "rgb", "value": [d] * 3}})
     white, black = plastic(1.0), plastic(0.0)
     si = mi.SurfaceInteraction3f()
@@ -57,7 +85,7 @@ for alpha in (0.01, 0.09, 0.25, 0.49, 1.0):
         t = math.radians(degrees)
         wo = mi.Vector3f(math.sin(t), 0, math.cos(t))
         diffuse = white.eval(mi.BSDFContext(), si, wo)[0] - black.eval(mi.BSDFContext(), si, wo)[0]
-        row.append("%.3f" % (diffuse / kdray_diffuse(math.cos(t), 1.0)))
+        row.append("%.4f" % (diffuse / math.cos(t) / kdray[(alpha, degrees)]))
     print(alpha, " ".join(row))
 PY
 

@@ -1,5 +1,5 @@
 // The rough coat's tables for bench/materials.sh: the time to build them for one eta (median of
-// several runs), and the diffuse term of kdray's plastic (kernels/pt_bsdf.h with the table
+// five etas near ETA, as librender keeps the blocks it has built), and the diffuse term of kdray's plastic (kernels/pt_bsdf.h with the table
 // lookups of kernels/pt_coat.h, compiled here as C++) for a white base, light arriving along the
 // normal, at the alphas and outgoing angles given, to set beside Mitsuba 3's roughplastic.
 // usage: coat_bench ETA ALPHA,... DEGREES,...   (prints "alpha degrees value" lines, then the time)
@@ -38,9 +38,10 @@ int main(int argc, char** argv) {
   std::vector<float> table;
   for (int run = 0; run < 5; ++run) {
     const auto start = std::chrono::steady_clock::now();
-    table = kdray::build_coat_tables({eta});
+    table = kdray::build_coat_tables({eta * (1 + 0.01f * float(run - 2))});
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
+  table = kdray::build_coat_tables({eta});
   for (double alpha : numbers(argv[2]))
     for (double degrees : numbers(argv[3])) {
       const PtCoatRow row = pt_coat_row(table.data(), eta, float(alpha));

@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 
 namespace kdray {
 namespace {
@@ -166,19 +168,27 @@ double rough_dielectric_internal_reflectance(double alpha, double eta) {
 }
 
 std::vector<float> build_coat_tables(const std::vector<float>& etas) {
+  // A block costs about 0.2 s on one core and depends on eta alone: batches (kdrender --jobs)
+  // upload their scene once per frame, so blocks are kept for the life of the process.
+  static std::mutex mutex;
+  static std::map<float, std::vector<float>> blocks;
   std::vector<float> unique;
   for (float eta : etas)
     if (std::find(unique.begin(), unique.end(), eta) == unique.end()) unique.push_back(eta);
   std::vector<float> table{float(unique.size())};
   table.insert(table.end(), unique.begin(), unique.end());
-  for (float eta : unique)
-    for (int j = 0; j < PT_COAT_ALPHAS; ++j) {
+  std::lock_guard<std::mutex> lock(mutex);
+  for (float eta : unique) {
+    std::vector<float>& block = blocks[eta];
+    for (int j = block.empty() ? 0 : PT_COAT_ALPHAS; j < PT_COAT_ALPHAS; ++j) {
       const double roughness = double(j) / (PT_COAT_ALPHAS - 1);
       const double alpha = roughness * roughness;
-      table.push_back(float(rough_dielectric_internal_reflectance(alpha, eta)));
+      block.push_back(float(rough_dielectric_internal_reflectance(alpha, eta)));
       for (int i = 0; i < PT_COAT_COSINES; ++i)
-        table.push_back(float(rough_dielectric_transmittance(double(i) / (PT_COAT_COSINES - 1), alpha, eta)));
+        block.push_back(float(rough_dielectric_transmittance(double(i) / (PT_COAT_COSINES - 1), alpha, eta)));
     }
+    table.insert(table.end(), block.begin(), block.end());
+  }
   return table;
 }
 

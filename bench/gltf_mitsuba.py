@@ -42,6 +42,7 @@ def main():
     parser.add_argument("--height", type=int, default=256)
     parser.add_argument("--max-bounces", type=int, default=8)
     parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--metal", action="store_true", help="gltf_scene.py's all-metal variant")
     args = parser.parse_args()
 
@@ -95,7 +96,7 @@ def main():
     scene["integrator"] = {"type": "path", "max_depth": args.max_bounces + 2}
     loaded = mi.load_dict(scene)
     start = time.perf_counter()
-    image = mi.render(loaded, spp=args.spp)
+    image = mi.render(loaded, spp=args.spp, seed=args.seed)
     dr.eval(image)
     seconds = time.perf_counter() - start
     mi.Bitmap(image).write(args.out)

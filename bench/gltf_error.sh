@@ -10,9 +10,10 @@
 # usage: bench/gltf_error.sh [BUILD_DIR] [OUT_DIR]
 #        (env: VARIANT=plastic SIZE=96 REF_SPP=4096 SPPS="16 64 256" RUNS=3 MITSUBA_PYTHON=...)
 set -euo pipefail
-cd "$(dirname "$0")/.."
-BUILD=$(realpath "${1:-build}")
+BUILD=${1:-}
 OUT=$(realpath -m "${2:-gltf-error}")
+. "$(dirname "$0")/common.sh"
+cd "$ROOT"
 VARIANT=${VARIANT:-plastic}
 SIZE=${SIZE:-96}
 REF_SPP=${REF_SPP:-4096}
@@ -23,7 +24,6 @@ mkdir -p "$OUT"
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 export KDRAY_CACHE_DIR=$WORK/kdray-cache
-KDCOMPARE=$BUILD/tools/kdcompare/kdcompare
 DIMS="--width $SIZE --height $SIZE --max-bounces 8"
 
 SCRIPTS=$PWD
@@ -38,23 +38,20 @@ case $VARIANT in
 esac
 FLAG=$([[ $VARIANT = metal ]] && echo --metal || true)
 /usr/bin/python3 "$SCRIPTS/samples/gltf_scene.py" "$WORK/scene" $FLAG > /dev/null
-"$BUILD/tools/kdconvert/kdconvert" "$WORK/scene/textured-scene.gltf" "$WORK/scene.kdscene" > /dev/null
-"$BUILD/tools/kdbuild/kdbuild" "$WORK/scene.kdscene" "$WORK/scene.kdtree" > /dev/null
+scene_files "$WORK/scene/textured-scene.gltf" scene
 
-median() { sort -g | awk '{v[NR]=$1} END {print v[int((NR+1)/2)]}'; }
-relmse() { "$KDCOMPARE" "$1" "$2" --json | /usr/bin/python3 -c "import json,sys; print(json.load(sys.stdin)['relmse'])"; }
+relmse() { "$KDCOMPARE" "$1" "$2" --json | json_field relmse; }
 now() { date +%s.%N; }
 render() {  # NAME SPP SEED OUT
   case $1 in
-    kdray) "$BUILD/tools/kdrender/kdrender" "$WORK/scene.kdscene" "$WORK/scene.kdtree" -o "$4" $DIMS --spp "$2" \
+    kdray) "$KDRENDER" "$WORK/scene.kdscene" "$WORK/scene.kdtree" -o "$4" $DIMS --spp "$2" \
       --seed "$3" --quiet ;;
     mitsuba) "$MITSUBA_PYTHON" "$SCRIPTS/bench/gltf_mitsuba.py" "$WORK/scene" "$4" $DIMS --spp "$2" --seed "$3" \
       $FLAG > /dev/null ;;
   esac
 }
 
-echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), L3 $(lscpu | sed -n 's/^L3 cache: *//p')," \
-  "$(date -u +%Y-%m-%dT%H:%MZ), load average $(cut -d' ' -f1-3 /proc/loadavg)"
+machine_line
 for name in mitsuba kdray; do
   ref=$OUT/reference-$name-$VARIANT-${REF_SPP}spp-${SIZE}.exr
   if [[ ! -f $ref ]]; then

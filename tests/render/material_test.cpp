@@ -137,17 +137,8 @@ Film render_floor_under(const Material* occluder, RenderStats* stats) {
     scene.materials.push_back(*occluder);
     test::add_quad(scene, {{{-s, 1, -s}, {-s, 1, s}, {s, 1, s}, {s, 1, -s}}}, 1);
   }
-  Camera camera;
-  camera.position = {0, 4, 0};
-  camera.target = {0, 0, 0};
-  camera.up = {0, 0, -1};
-  camera.vertical_fov_degrees = 10;
-  scene.cameras.push_back(camera);
-  Light light;
-  light.type = LightType::Directional;
-  light.direction = {0, -1, 0};
-  light.color = {kIrradiance, kIrradiance, kIrradiance};
-  scene.lights.push_back(light);
+  scene.cameras.push_back(test::camera_above_floor(10));
+  scene.lights.push_back(test::directional_light({0, -1, 0}, kIrradiance));
   KdTree tree = test::tree_for(scene);
   RenderSettings settings = test::tiny_settings(8, 256);
   Film film = render(scene, tree, settings, DeviceSelection{}, stats);

@@ -3,6 +3,7 @@
 // and a floor whose two triangles have different UV derivatives shows no step along their shared
 // edge, where a frame built per triangle from its own dp/du would.
 #include "render_fixture.h"
+#include "test_scenes.h"
 
 #include <kdray/render.h>
 #include <kdray/tangents.h>
@@ -38,17 +39,8 @@ Scene floor_scene(std::vector<Vec2> uvs) {
   scene.uvs = std::move(uvs);
   scene.indices = {0, 1, 2, 0, 2, 3};
   scene.material_ids = {0, 0};
-  Camera camera;
-  camera.position = {0, 4, 0};
-  camera.target = {0, 0, 0};
-  camera.up = {0, 0, -1};
-  camera.vertical_fov_degrees = 10;
-  scene.cameras.push_back(camera);
-  Light light;
-  light.type = LightType::Directional;
-  light.direction = {-kToLight.x, -kToLight.y, -kToLight.z};
-  light.color = {float(kIrradiance), float(kIrradiance), float(kIrradiance)};
-  scene.lights.push_back(light);
+  scene.cameras.push_back(test::camera_above_floor(10));
+  scene.lights.push_back(test::directional_light({-kToLight.x, -kToLight.y, -kToLight.z}, float(kIrradiance)));
   return scene;
 }
 

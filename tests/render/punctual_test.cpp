@@ -2,6 +2,7 @@
 // at distance r has radiance a I cos(theta) / (pi r^2); a spot light adds its cone; a directional
 // light of irradiance E gives a E cos(theta) / pi.
 #include "render_fixture.h"
+#include "test_scenes.h"
 
 #include <kdray/render.h>
 
@@ -28,12 +29,7 @@ Scene floor_scene() {
   scene.positions = {{-s, 0, -s}, {-s, 0, s}, {s, 0, s}, {s, 0, -s}};
   scene.indices = {0, 1, 2, 0, 2, 3};
   scene.material_ids = {0, 0};
-  Camera camera;
-  camera.position = {0, 4, 0};
-  camera.target = {0, 0, 0};
-  camera.up = {0, 0, -1};
-  camera.vertical_fov_degrees = float(kFov);
-  scene.cameras.push_back(camera);
+  scene.cameras.push_back(test::camera_above_floor(float(kFov)));
   return scene;
 }
 

@@ -17,6 +17,27 @@ inline void add_quad(Scene& scene, const std::array<Vec3, 4>& corners, uint32_t 
   scene.material_ids.push_back(material);
 }
 
+// A camera 4 units above the origin looking straight down (-Y), the image's up along -Z: it sees
+// a floor at y = 0 with +X to the right.
+inline Camera camera_above_floor(float vertical_fov_degrees) {
+  Camera camera;
+  camera.position = {0, 4, 0};
+  camera.target = {0, 0, 0};
+  camera.up = {0, 0, -1};
+  camera.vertical_fov_degrees = vertical_fov_degrees;
+  return camera;
+}
+
+// A directional light travelling along `direction` with irradiance `irradiance` (W/m^2) on a
+// surface facing it.
+inline Light directional_light(const Vec3& direction, float irradiance) {
+  Light light;
+  light.type = LightType::Directional;
+  light.direction = direction;
+  light.color = {irradiance, irradiance, irradiance};
+  return light;
+}
+
 // A closed cube [-1,1]^3 whose faces all face inwards, every face of material 0; the camera
 // sits at the centre. With an Emissive material of albedo a and emission Le this is the
 // furnace: radiance Le * (1 + a + ... + a^(B+1)) with B max bounces.

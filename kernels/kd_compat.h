@@ -5,6 +5,11 @@
 
 #ifdef __OPENCL_VERSION__
 /* ---- OpenCL C ---- */
+/* No contraction of a * b + c into an FMA anywhere in device code: the watertight triangle test
+ * needs exactly negated edge functions (kernels/kd_geometry.h), and the path tracer's C++ build
+ * must give the kernel's bits (kernels/kd_math.h); C++ that must match is compiled with
+ * -ffp-contract=off. */
+#pragma OPENCL FP_CONTRACT OFF
 #define KD_INLINE inline
 #define KD_GLOBAL __global
 #define KD_CONSTANT __constant

@@ -9,14 +9,13 @@
  * double (no cl_khr_fp64) keep the float 0, which counts as "on the edge": still no leaks, but a
  * hit may be reported on both sides of an edge.
  *
- * Contraction of a*b - c*d into an FMA would break that symmetry, so it is switched off here. */
+ * Contraction of a*b - c*d into an FMA would break that symmetry, so it is switched off (kd_compat.h). */
 #ifndef KD_GEOMETRY_H
 #define KD_GEOMETRY_H
 
 #include "kd_compat.h"
 
 #ifdef __OPENCL_VERSION__
-#pragma OPENCL FP_CONTRACT OFF
 #if defined(cl_khr_fp64) || defined(__opencl_c_fp64)
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #define KD_HAS_DOUBLE 1

@@ -1,7 +1,7 @@
 /* Materials: Lambertian diffuse (also the reflection of emitters), perfect mirror, GGX rough
  * conductor (Walter et al. 2007), smooth dielectric and glTF metallic-roughness (a GGX conductor
  * blended with a diffuse base under a rough dielectric GGX coat, as Mitsuba 3's roughplastic, with
- * the coat's tables of kernels/pt_coat.h). OpenCL C only.
+ * the coat's tables of kernels/pt_coat.h).
  * Conventions: n is the shading normal turned to the side of wo; wo and wi point away from the
  * surface; "weight" is f * |cos| / pdf. Features a scene lacks are compiled out. */
 #ifndef PT_BSDF_H
@@ -50,12 +50,12 @@ inline float pt_ggx_alpha2(float roughness) {
 inline float pt_ggx_eval_common(float roughness, float3 n, float3 wo, float3 wi, float* pdf, float* o_h) {
   *pdf = 0.0f;
   *o_h = 1.0f;
-  float cos_o = dot(n, wo), cos_i = dot(n, wi);
+  float cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
   if (cos_o <= 0.0f || cos_i <= 0.0f) return 0.0f;
-  float3 h = normalize(wo + wi);
+  float3 h = kd_normalize(wo + wi);
   float alpha2 = pt_ggx_alpha2(roughness);
-  float cos_h = dot(n, h);
-  *o_h = dot(wo, h);
+  float cos_h = kd_dot(n, h);
+  *o_h = kd_dot(wo, h);
   float d = pt_ggx_d(cos_h, alpha2);
   *pdf = d * cos_h / (4.0f * *o_h);
   float g = pt_ggx_g1(cos_o, alpha2) * pt_ggx_g1(cos_i, alpha2);
@@ -65,7 +65,7 @@ inline float pt_ggx_eval_common(float roughness, float3 n, float3 wo, float3 wi,
 inline float3 pt_ggx_eval(float3 color, float roughness, float3 n, float3 wo, float3 wi, float* pdf) {
   float o_h;
   float common = pt_ggx_eval_common(roughness, n, wo, wi, pdf, &o_h);
-  return common > 0.0f ? pt_schlick(color, o_h) * common : (float3)(0.0f);
+  return common > 0.0f ? pt_schlick(color, o_h) * common : kd_splat3(0.0f);
 }
 /* wo reflected about a half vector drawn from D(h) cos(h). */
 inline float3 pt_ggx_sample_wi(float roughness, float3 n, float3 wo, float u1, float u2) {
@@ -74,8 +74,10 @@ inline float3 pt_ggx_sample_wi(float roughness, float3 n, float3 wo, float u1, f
   float cos_h = 1.0f / sqrt(1.0f + tan2);
   float sin_h = sqrt(fmax(0.0f, 1.0f - cos_h * cos_h));
   float phi = 2.0f * PT_PI * u2;
-  float3 h = pt_to_world((float3)(sin_h * cos(phi), sin_h * sin(phi), cos_h), n);
-  return 2.0f * dot(wo, h) * h - wo;
+  float sin_phi, cos_phi;
+  kd_sincos(phi, &sin_phi, &cos_phi);
+  float3 h = pt_to_world(KD_FLOAT3(sin_h * cos_phi, sin_h * sin_phi, cos_h), n);
+  return 2.0f * kd_dot(wo, h) * h - wo;
 }
 #endif
 
@@ -107,13 +109,13 @@ inline float pt_metal_rough_ggx_probability(const PtMaterial* m, float3 color, f
  * (linear mode): the coat's GGX reflection plus the base's light, which enters and leaves through
  * the rough interface with its transmittances t_i and t_o and is reflected back inside with
  * F_int (kernels/pt_coat.h): color cos(wi) / pi * t_i t_o / (eta^2 (1 - F_int)). */
-inline float3 pt_metal_rough_eval(const PtMaterial* m, __global const float* coat_tables, float3 color, float3 n,
+inline float3 pt_metal_rough_eval(const PtMaterial* m, KD_GLOBAL const float* coat_tables, float3 color, float3 n,
                                   float3 wo, float3 wi, float* pdf) {
   float ggx_pdf, o_h;
   float common = pt_ggx_eval_common(m->roughness, n, wo, wi, &ggx_pdf, &o_h);
-  float cos_o = dot(n, wo), cos_i = dot(n, wi);
+  float cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
   *pdf = 0.0f;
-  if (cos_o <= 0.0f || cos_i <= 0.0f) return (float3)(0.0f);
+  if (cos_o <= 0.0f || cos_i <= 0.0f) return kd_splat3(0.0f);
   float eta = m->ior;
   float3 metal = pt_schlick(color, o_h) * common;
   float coat = pt_fresnel_coat(o_h, eta) * common;
@@ -132,7 +134,7 @@ inline int pt_is_delta(uint type) { return type == PT_MIRROR || type == PT_DIELE
 
 /* f * |cos(wi)| for the non-delta lobes, and the pdf pt_bsdf_sample would give wi. coat_tables:
  * kernels/pt_coat.h, read by metallic-roughness materials only. */
-inline float3 pt_bsdf_eval(const PtMaterial* m, __global const float* coat_tables, float3 color, float3 n, float3 wo,
+inline float3 pt_bsdf_eval(const PtMaterial* m, KD_GLOBAL const float* coat_tables, float3 color, float3 n, float3 wo,
                            float3 wi, float* pdf) {
 #ifdef KD_FEATURE_METALLIC_ROUGHNESS
   if (m->type == PT_METALLIC_ROUGHNESS) return pt_metal_rough_eval(m, coat_tables, color, n, wo, wi, pdf);
@@ -141,10 +143,10 @@ inline float3 pt_bsdf_eval(const PtMaterial* m, __global const float* coat_table
 #ifdef KD_FEATURE_GLOSSY
   if (m->type == PT_ROUGH_CONDUCTOR) return pt_ggx_eval(color, m->roughness, n, wo, wi, pdf);
 #endif
-  float cos_i = dot(n, wi);
+  float cos_i = kd_dot(n, wi);
   if (cos_i <= 0.0f || pt_is_delta(m->type)) {
     *pdf = 0.0f;
-    return (float3)(0.0f);
+    return kd_splat3(0.0f);
   }
   *pdf = cos_i * PT_INV_PI;
   return color * (cos_i * PT_INV_PI);
@@ -152,14 +154,14 @@ inline float3 pt_bsdf_eval(const PtMaterial* m, __global const float* coat_table
 
 /* entering: wo is on the front (winding) side, which for a dielectric is the outside. u_lobe
  * picks the lobe of layered materials. */
-inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, __global const float* coat_tables, float3 color, float3 n,
+inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, KD_GLOBAL const float* coat_tables, float3 color, float3 n,
                                    float3 wo, int entering, float u1, float u2, float u_lobe) {
   PtBsdfSample s;
   s.is_delta = 0;
   s.transmits = 0;
 #ifdef KD_FEATURE_MIRROR
   if (m->type == PT_MIRROR) {
-    s.wi = 2.0f * dot(wo, n) * n - wo;
+    s.wi = 2.0f * kd_dot(wo, n) * n - wo;
     s.weight = color;
     s.pdf = 0.0f;
     s.is_delta = 1;
@@ -171,7 +173,7 @@ inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, __global const float* co
     float eta_i = entering ? 1.0f : m->ior;
     float eta_t = entering ? m->ior : 1.0f;
     float eta = eta_i / eta_t;
-    float cos_i = fmin(dot(n, wo), 1.0f);
+    float cos_i = fmin(kd_dot(n, wo), 1.0f);
     float sin2_t = eta * eta * fmax(0.0f, 1.0f - cos_i * cos_i);
     float cos_t = sqrt(fmax(0.0f, 1.0f - sin2_t));
     float reflectance = sin2_t >= 1.0f ? 1.0f : pt_fresnel_dielectric(cos_i, cos_t, eta_i, eta_t);
@@ -179,9 +181,9 @@ inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, __global const float* co
     s.is_delta = 1;
     if (u1 < reflectance) {
       s.wi = 2.0f * cos_i * n - wo;
-      s.weight = (float3)(1.0f);
+      s.weight = kd_splat3(1.0f);
     } else {
-      s.wi = normalize(-eta * wo + (eta * cos_i - cos_t) * n);
+      s.wi = kd_normalize(-eta * wo + (eta * cos_i - cos_t) * n);
       s.weight = color * (eta * eta); /* radiance is scaled by (eta_i/eta_t)^2 across the boundary */
       s.transmits = 1;
     }
@@ -192,20 +194,20 @@ inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, __global const float* co
   if (m->type == PT_ROUGH_CONDUCTOR) {
     s.wi = pt_ggx_sample_wi(m->roughness, n, wo, u1, u2);
     float3 f_cos = pt_ggx_eval(color, m->roughness, n, wo, s.wi, &s.pdf);
-    s.weight = s.pdf > 0.0f ? f_cos / s.pdf : (float3)(0.0f);
+    s.weight = s.pdf > 0.0f ? f_cos / s.pdf : kd_splat3(0.0f);
     return s;
   }
 #endif
 #ifdef KD_FEATURE_METALLIC_ROUGHNESS
   if (m->type == PT_METALLIC_ROUGHNESS) {
     PtCoatRow row = pt_coat_row(coat_tables, m->ior, m->roughness);
-    float t_o = pt_coat_transmittance(coat_tables, row, dot(n, wo));
+    float t_o = pt_coat_transmittance(coat_tables, row, kd_dot(n, wo));
     if (u_lobe < pt_metal_rough_ggx_probability(m, color, t_o))
       s.wi = pt_ggx_sample_wi(m->roughness, n, wo, u1, u2);
     else
       s.wi = pt_sample_cosine(n, u1, u2);
     float3 f_cos = pt_metal_rough_eval(m, coat_tables, color, n, wo, s.wi, &s.pdf);
-    s.weight = s.pdf > 0.0f ? f_cos / s.pdf : (float3)(0.0f);
+    s.weight = s.pdf > 0.0f ? f_cos / s.pdf : kd_splat3(0.0f);
     return s;
   }
 #endif
@@ -213,8 +215,8 @@ inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, __global const float* co
   (void)u_lobe;
   (void)coat_tables;
   s.wi = pt_sample_cosine(n, u1, u2);
-  s.pdf = fmax(dot(n, s.wi), 0.0f) * PT_INV_PI;
-  s.weight = s.pdf > 0.0f ? color : (float3)(0.0f);
+  s.pdf = fmax(kd_dot(n, s.wi), 0.0f) * PT_INV_PI;
+  s.weight = s.pdf > 0.0f ? color : kd_splat3(0.0f);
   return s;
 }
 

@@ -15,8 +15,7 @@
  * cdf over rows. The density in (u, v) is then p_row(j) p_col(i | j) W H, and over solid angle
  * that divided by 2 pi^2 sin(theta).
  *
- * The table part below compiles as C++ too, so the host tests can check it against histograms;
- * the directional part is OpenCL C only. */
+ * Compiles as OpenCL C and as C++ (the host tests check the table against histograms). */
 #ifndef PT_ENVIRONMENT_H
 #define PT_ENVIRONMENT_H
 
@@ -64,31 +63,31 @@ KD_INLINE float pt_env_sample_uv(KD_GLOBAL const float* cdf, kd_u32 width, kd_u3
   return pt_cdf_cell(marginal, j) * pt_cdf_cell(row, i) * (float)(width * height);
 }
 
-#ifdef __OPENCL_VERSION__
-
 #include "pt_sampling.h"
 
 /* Map coordinates of world direction d (unit). */
-inline float2 pt_env_uv(__global const PtRenderParams* params, float3 d) {
+inline float2 pt_env_uv(KD_GLOBAL const PtRenderParams* params, float3 d) {
   float c = params->env_rotate_cos, s = params->env_rotate_sin;
   float x = c * d.x - s * d.z, z = s * d.x + c * d.z; /* R_y(-angle) d */
-  float u = atan2(x, -z) * (0.5f * PT_INV_PI);
+  float u = kd_atan2(x, -z) * (0.5f * PT_INV_PI);
   u -= floor(u);
-  float v = acos(clamp(d.y, -1.0f, 1.0f)) * PT_INV_PI;
-  return (float2)(u < 1.0f ? u : 0.0f, v);
+  float v = kd_acos(clamp(d.y, -1.0f, 1.0f)) * PT_INV_PI;
+  return KD_FLOAT2(u < 1.0f ? u : 0.0f, v);
 }
 
 /* World direction of map coordinates (u, v); *sin_theta receives sin(pi v). */
-inline float3 pt_env_direction(__global const PtRenderParams* params, float2 uv, float* sin_theta) {
+inline float3 pt_env_direction(KD_GLOBAL const PtRenderParams* params, float2 uv, float* sin_theta) {
   float phi = 2.0f * PT_PI * uv.x, theta = PT_PI * uv.y;
-  float st = sin(theta);
-  float x = st * sin(phi), y = cos(theta), z = -st * cos(phi);
+  float st, ct, sp, cp;
+  kd_sincos(theta, &st, &ct);
+  kd_sincos(phi, &sp, &cp);
+  float x = st * sp, y = ct, z = -st * cp;
   float c = params->env_rotate_cos, s = params->env_rotate_sin;
   *sin_theta = st;
-  return (float3)(c * x + s * z, y, -s * x + c * z); /* R_y(angle) */
+  return KD_FLOAT3(c * x + s * z, y, -s * x + c * z); /* R_y(angle) */
 }
 
-inline float3 pt_env_texel(__global const float* texels, uint width, uint height, int x, int y) {
+inline float3 pt_env_texel(KD_GLOBAL const float* texels, uint width, uint height, int x, int y) {
   x %= (int)width;
   x += x < 0 ? (int)width : 0;
   y = clamp(y, 0, (int)height - 1);
@@ -96,25 +95,23 @@ inline float3 pt_env_texel(__global const float* texels, uint width, uint height
 }
 
 /* Bilinear radiance at map coordinates (u, v), strength applied; rows as the mapping above. */
-inline float3 pt_env_lookup(__global const float* texels, __global const PtRenderParams* params, float2 uv) {
+inline float3 pt_env_lookup(KD_GLOBAL const float* texels, KD_GLOBAL const PtRenderParams* params, float2 uv) {
   uint w = params->env_width, h = params->env_height;
   float fx = uv.x * (float)w - 0.5f, fy = uv.y * (float)(h - 1);
   float x0 = floor(fx), y0 = floor(fy);
   float ax = fx - x0, ay = fy - y0;
   int ix = (int)x0, iy = (int)y0;
-  float3 top = mix(pt_env_texel(texels, w, h, ix, iy), pt_env_texel(texels, w, h, ix + 1, iy), ax);
-  float3 bottom = mix(pt_env_texel(texels, w, h, ix, iy + 1), pt_env_texel(texels, w, h, ix + 1, iy + 1), ax);
-  return params->env_strength * mix(top, bottom, ay);
+  float3 top = kd_mix3(pt_env_texel(texels, w, h, ix, iy), pt_env_texel(texels, w, h, ix + 1, iy), ax);
+  float3 bottom = kd_mix3(pt_env_texel(texels, w, h, ix, iy + 1), pt_env_texel(texels, w, h, ix + 1, iy + 1), ax);
+  return params->env_strength * kd_mix3(top, bottom, ay);
 }
 
 /* Solid-angle density with which next-event estimation picks direction d (light choice included). */
-inline float pt_env_pdf(__global const float* cdf, __global const PtRenderParams* params, float2 uv) {
-  float sin_theta = sin(PT_PI * uv.y);
+inline float pt_env_pdf(KD_GLOBAL const float* cdf, KD_GLOBAL const PtRenderParams* params, float2 uv) {
+  float sin_theta = kd_sin(PT_PI * uv.y);
   if (!(sin_theta > 0.0f)) return 0.0f;
   return params->select_environment * pt_env_pdf_uv(cdf, params->env_width, params->env_height, uv.x, uv.y) /
          (2.0f * PT_PI * PT_PI * sin_theta);
 }
-
-#endif /* __OPENCL_VERSION__ */
 
 #endif /* PT_ENVIRONMENT_H */

@@ -1,7 +1,6 @@
 /* Lights other than emissive triangles, as next-event estimation samples them, and the MIS
  * weights every light strategy uses. The environment (KD_FEATURE_ENVIRONMENT) and punctual lights
- * (KD_FEATURE_PUNCTUAL) are compiled only into kernels for scenes that have them.
- * OpenCL C only. */
+ * (KD_FEATURE_PUNCTUAL) are compiled only into kernels for scenes that have them. */
 #ifndef PT_LIGHTS_H
 #define PT_LIGHTS_H
 
@@ -38,33 +37,34 @@ typedef struct PtLightSample {
 } PtLightSample;
 
 /* Distance that takes a shadow ray from p out of the scene's bounds. */
-inline float pt_escape_distance(__global const PtRenderParams* params, float3 p) {
+inline float pt_escape_distance(KD_GLOBAL const PtRenderParams* params, float3 p) {
   float3 lo = vload3(0, params->bounds_min), hi = vload3(0, params->bounds_max);
-  return 1.01f * (length(p - 0.5f * (lo + hi)) + 0.5f * length(hi - lo)) + 1.0f;
+  return 1.01f * (kd_length(p - 0.5f * (lo + hi)) + 0.5f * kd_length(hi - lo)) + 1.0f;
 }
 
 #ifdef KD_FEATURE_ENVIRONMENT
-inline PtLightSample pt_env_sample_light(__global const float* texels, __global const float* cdf,
-                                         __global const PtRenderParams* params, float3 p, float2 u2d) {
+inline PtLightSample pt_env_sample_light(KD_GLOBAL const float* texels, KD_GLOBAL const float* cdf,
+                                         KD_GLOBAL const PtRenderParams* params, float3 p, float2 u2d) {
   PtLightSample s;
   float u, v;
   float pdf_uv = pt_env_sample_uv(cdf, params->env_width, params->env_height, u2d.x, u2d.y, &u, &v);
-  float2 uv = (float2)(u, v);
+  float2 uv = KD_FLOAT2(u, v);
   float sin_theta;
   s.wi = pt_env_direction(params, uv, &sin_theta);
   s.pdf = params->select_environment * pdf_uv / (2.0f * PT_PI * PT_PI * sin_theta);
   s.distance = pt_escape_distance(params, p);
-  s.value = s.pdf > 0.0f ? pt_env_lookup(texels, params, uv) / s.pdf : (float3)(0.0f);
+  s.value = s.pdf > 0.0f ? pt_env_lookup(texels, params, uv) / s.pdf : kd_splat3(0.0f);
   return s;
 }
 #endif
 
 #ifdef KD_FEATURE_PUNCTUAL
 /* One of the punctual lights, chosen uniformly with u. */
-inline PtLightSample pt_punctual_sample_light(__global const PtPunctual* lights, __global const PtRenderParams* params,
+inline PtLightSample pt_punctual_sample_light(KD_GLOBAL const PtPunctual* lights, KD_GLOBAL const PtRenderParams* params,
                                               float3 p, float u) {
   uint count = params->punctual_count;
-  PtPunctual light = lights[min((uint)(u * (float)count), count - 1)];
+  uint index = (uint)(u * (float)count);
+  PtPunctual light = lights[index < count - 1 ? index : count - 1];
   float select = (1.0f - params->select_triangles - params->select_environment) / (float)count;
   float3 power = vload3(0, light.power) / select;
   float3 direction = vload3(0, light.direction);
@@ -77,13 +77,13 @@ inline PtLightSample pt_punctual_sample_light(__global const PtPunctual* lights,
     return s;
   }
   float3 to_light = vload3(0, light.position) - p;
-  float dist2 = dot(to_light, to_light);
+  float dist2 = kd_dot(to_light, to_light);
   s.distance = sqrt(dist2);
   s.wi = to_light / s.distance;
-  s.value = dist2 > 0.0f ? power / dist2 : (float3)(0.0f);
+  s.value = dist2 > 0.0f ? power / dist2 : kd_splat3(0.0f);
   if (light.type == PT_PUNCTUAL_SPOT) {
     /* KHR_lights_punctual's falloff: the square of a linear ramp in cos between the cones. */
-    float ramp = (dot(direction, -s.wi) - light.cos_outer) / fmax(light.cos_inner - light.cos_outer, 1e-3f);
+    float ramp = (kd_dot(direction, -s.wi) - light.cos_outer) / fmax(light.cos_inner - light.cos_outer, 1e-3f);
     ramp = clamp(ramp, 0.0f, 1.0f);
     s.value *= ramp * ramp;
   }

@@ -3,7 +3,7 @@
  * blended surfaces. Each part is compiled only for scenes that have it. Traversal itself never
  * reads a material: a ray that hits an alpha-tested surface is continued past it by the shading
  * step (camera and bounce rays) or by pt_occluded (shadow rays), so rays through opaque scenes
- * cost what they did. OpenCL C only. */
+ * cost what they did. */
 #ifndef PT_MATERIAL_H
 #define PT_MATERIAL_H
 
@@ -12,7 +12,7 @@
 #include "pt_types.h"
 
 #ifdef KD_FEATURE_TEXTURES
-inline float4 pt_texel(__global const float4* texels, PtTexture tex, int x, int y) {
+inline float4 pt_texel(KD_GLOBAL const float4* texels, PtTexture tex, int x, int y) {
   x = x % (int)tex.width;
   y = y % (int)tex.height;
   x += x < 0 ? (int)tex.width : 0;
@@ -20,7 +20,7 @@ inline float4 pt_texel(__global const float4* texels, PtTexture tex, int x, int 
   return texels[tex.first_texel + (uint)y * tex.width + (uint)x];
 }
 /* Bilinear lookup with wrapping; v = 0 is the bottom row (OBJ convention). */
-inline float4 pt_texture_lookup(__global const PtTexture* textures, __global const float4* texels, int index,
+inline float4 pt_texture_lookup(KD_GLOBAL const PtTexture* textures, KD_GLOBAL const float4* texels, int index,
                                  float2 uv) {
   PtTexture tex = textures[index];
   float fx = uv.x * (float)tex.width - 0.5f;
@@ -28,12 +28,12 @@ inline float4 pt_texture_lookup(__global const PtTexture* textures, __global con
   float x0 = floor(fx), y0 = floor(fy);
   float ax = fx - x0, ay = fy - y0;
   int ix = (int)x0, iy = (int)y0;
-  float4 top = mix(pt_texel(texels, tex, ix, iy), pt_texel(texels, tex, ix + 1, iy), ax);
-  float4 bottom = mix(pt_texel(texels, tex, ix, iy + 1), pt_texel(texels, tex, ix + 1, iy + 1), ax);
-  return mix(top, bottom, ay);
+  float4 top = kd_mix4(pt_texel(texels, tex, ix, iy), pt_texel(texels, tex, ix + 1, iy), ax);
+  float4 bottom = kd_mix4(pt_texel(texels, tex, ix, iy + 1), pt_texel(texels, tex, ix + 1, iy + 1), ax);
+  return kd_mix4(top, bottom, ay);
 }
 /* The interpolated UV of barycentric point (u, v) of a triangle with vertex numbers idx. */
-inline float2 pt_triangle_uv(__global const float* uvs, __global const kd_u32* idx, float u, float v) {
+inline float2 pt_triangle_uv(KD_GLOBAL const float* uvs, KD_GLOBAL const kd_u32* idx, float u, float v) {
   return (1.0f - u - v) * vload2(idx[0], uvs) + u * vload2(idx[1], uvs) + v * vload2(idx[2], uvs);
 }
 #endif
@@ -45,15 +45,15 @@ inline float2 pt_triangle_uv(__global const float* uvs, __global const kd_u32* i
  * Tangents are smooth across the triangles that share a vertex, so no seam shows between them.
  * The handedness w was set for the normal on the side the triangle winds counter-clockwise:
  * `side` is -1 when n faces the other way (a back face), which keeps the bitangent on +v. */
-inline float3 pt_normal_mapped(float3 n, __global const float* tangents, __global const kd_u32* idx, float u,
+inline float3 pt_normal_mapped(float3 n, KD_GLOBAL const float* tangents, KD_GLOBAL const kd_u32* idx, float u,
                                float v, float side, float3 mapped) {
   float4 tw = (1.0f - u - v) * vload4(idx[0], tangents) + u * vload4(idx[1], tangents) + v * vload4(idx[2], tangents);
-  float3 t = tw.xyz - dot(tw.xyz, n) * n;
-  if (!(dot(t, t) > 0.0f)) return n;
-  t = normalize(t);
-  float3 b = (tw.w < 0.0f ? -side : side) * cross(n, t);
+  float3 t = kd_xyz(tw) - kd_dot(kd_xyz(tw), n) * n;
+  if (!(kd_dot(t, t) > 0.0f)) return n;
+  t = kd_normalize(t);
+  float3 b = (tw.w < 0.0f ? -side : side) * kd_cross(n, t);
   float3 mapped_n = mapped.x * t + mapped.y * b + mapped.z * n;
-  return dot(mapped_n, mapped_n) > 0.0f ? normalize(mapped_n) : n;
+  return kd_dot(mapped_n, mapped_n) > 0.0f ? kd_normalize(mapped_n) : n;
 }
 #endif
 
@@ -61,12 +61,12 @@ inline float3 pt_normal_mapped(float3 n, __global const float* tangents, __globa
  * *color, the normal map into *n (kept on the side of ng_facing; ng is the triangle's
  * counter-clockwise normal). */
 inline void pt_apply_textures(PtMaterial* m, float3* color, float3* n, float3 ng, float3 ng_facing,
-                              __global const float* uvs, __global const float* tangents,
-                              __global const PtTexture* textures, __global const float4* texels,
-                              __global const kd_u32* idx, float u, float v) {
+                              KD_GLOBAL const float* uvs, KD_GLOBAL const float* tangents,
+                              KD_GLOBAL const PtTexture* textures, KD_GLOBAL const float4* texels,
+                              KD_GLOBAL const kd_u32* idx, float u, float v) {
 #ifdef KD_FEATURE_TEXTURES
   float2 uv = pt_triangle_uv(uvs, idx, u, v);
-  if (m->texture >= 0) *color *= pt_texture_lookup(textures, texels, m->texture, uv).xyz;
+  if (m->texture >= 0) *color *= kd_xyz(pt_texture_lookup(textures, texels, m->texture, uv));
 #ifdef KD_FEATURE_METAL_ROUGH_TEXTURE
   if (m->metal_rough_texture >= 0) {
     float4 mr = pt_texture_lookup(textures, texels, m->metal_rough_texture, uv);
@@ -76,10 +76,10 @@ inline void pt_apply_textures(PtMaterial* m, float3* color, float3* n, float3 ng
 #endif
 #ifdef KD_FEATURE_NORMAL_MAP
   if (m->normal_texture >= 0) {
-    float3 mapped = 2.0f * pt_texture_lookup(textures, texels, m->normal_texture, uv).xyz - 1.0f;
-    float3 mn = pt_normal_mapped(*n, tangents, idx, u, v, dot(ng, ng_facing) > 0.0f ? 1.0f : -1.0f, mapped);
+    float3 mapped = 2.0f * kd_xyz(pt_texture_lookup(textures, texels, m->normal_texture, uv)) - 1.0f;
+    float3 mn = pt_normal_mapped(*n, tangents, idx, u, v, kd_dot(ng, ng_facing) > 0.0f ? 1.0f : -1.0f, mapped);
     /* A mapped normal may not face away from the viewer's side of the surface. */
-    *n = dot(mn, ng_facing) > 1e-4f ? mn : *n;
+    *n = kd_dot(mn, ng_facing) > 1e-4f ? mn : *n;
   }
 #endif
 #endif
@@ -89,11 +89,11 @@ inline void pt_apply_textures(PtMaterial* m, float3* color, float3* n, float3 ng
 
 #ifdef KD_FEATURE_EMISSIVE_TEXTURE
 /* Emission of an emissive material at barycentric point (u, v) of a triangle. */
-inline float3 pt_textured_emission(const PtMaterial* m, __global const float* uvs, __global const PtTexture* textures,
-                                   __global const float4* texels, __global const kd_u32* idx, float u, float v) {
+inline float3 pt_textured_emission(const PtMaterial* m, KD_GLOBAL const float* uvs, KD_GLOBAL const PtTexture* textures,
+                                   KD_GLOBAL const float4* texels, KD_GLOBAL const kd_u32* idx, float u, float v) {
   float3 emission = vload3(0, m->emission);
   if (m->emissive_texture >= 0)
-    emission *= pt_texture_lookup(textures, texels, m->emissive_texture, pt_triangle_uv(uvs, idx, u, v)).xyz;
+    emission *= kd_xyz(pt_texture_lookup(textures, texels, m->emissive_texture, pt_triangle_uv(uvs, idx, u, v)));
   return emission;
 }
 #endif
@@ -102,11 +102,11 @@ inline float3 pt_textured_emission(const PtMaterial* m, __global const float* uv
 /* Whether a ray passes through triangle `tri` at barycentric (u, v). Blended surfaces let it pass
  * with probability 1 - alpha, decided by a hash of the path and the triangle, so every layer a
  * path meets draws its own number and the decision does not depend on the thread. */
-inline int pt_alpha_passes(__global const kd_u32* indices, __global const kd_u32* material_ids,
-                           __global const PtMaterial* materials, __global const float* uvs,
-                           __global const PtTexture* textures, __global const float4* texels, uint tri, float u,
+inline int pt_alpha_passes(KD_GLOBAL const kd_u32* indices, KD_GLOBAL const kd_u32* material_ids,
+                           KD_GLOBAL const PtMaterial* materials, KD_GLOBAL const float* uvs,
+                           KD_GLOBAL const PtTexture* textures, KD_GLOBAL const float4* texels, uint tri, float u,
                            float v, uint path_key) {
-  __global const PtMaterial* m = &materials[material_ids[tri]];
+  KD_GLOBAL const PtMaterial* m = &materials[material_ids[tri]];
   float cutoff = m->alpha_cutoff;
   if (cutoff == 0.0f) return 0;
   float alpha = m->alpha;

@@ -16,20 +16,8 @@ __kernel void pt_render(PT_SCENE_ARGS, __global long* film, __global uint* next_
     if (pixel >= pixel_count) break;
     long sums[PT_MAX_FILM_CHANNELS];
     for (uint c = 0; c < PT_MAX_FILM_CHANNELS; ++c) sums[c] = 0;
-    for (uint i = 0; i < params->sample_count; ++i) {
-      PtPath path;
-      pt_path_begin(&path, params, pixel, params->sample_offset + i);
-      while (path.alive) {
-        HitRecord hit = kd_intersect_closest(&scene.kd, pt_path_ray(&path));
-        ++rays;
-        pt_path_shade(&path, &scene, params, hit);
-        if (path.shadow_pending) {
-          ++rays;
-          pt_path_resolve_shadow(&path, pt_path_occluded(&scene, &path, params));
-        }
-      }
-      pt_path_accumulate(&path, params, sums, &nonfinite);
-    }
+    for (uint i = 0; i < params->sample_count; ++i)
+      rays += pt_render_sample(&scene, params, pixel, params->sample_offset + i, sums, &nonfinite);
     for (uint c = 0; c < channels; ++c) film[(size_t)pixel * channels + c] += sums[c];
   }
   pt_add_stats(stats, rays, nonfinite);

@@ -2,7 +2,7 @@
  * (emission with MIS, Russian roulette, next-event estimation, BSDF sampling), resolve the
  * shadow ray, add the finished sample to the film. The megakernel runs these steps in a loop
  * per work-item; the wavefront form runs each step as its own kernel over a buffer of paths.
- * OpenCL C only. */
+ * Compiles as C++ too: tests/render/cpu_integrator.h runs it on the CPU against the kernel. */
 #ifndef PT_PATH_H
 #define PT_PATH_H
 
@@ -11,6 +11,7 @@
 #include "pt_lights.h"
 #include "pt_material.h"
 #include "pt_rng.h"
+#include "pt_scene_args.h"
 #include "pt_spherical_triangle.h"
 #include "pt_types.h"
 
@@ -21,27 +22,60 @@
 
 typedef struct PtSceneData {
   KdSceneView kd;                  /* its triangle_vertices also give the shading positions */
-  __global const kd_u32* indices;  /* 3 per triangle: vertex numbers of normals and uvs */
-  __global const kd_u32* material_ids;
-  __global const PtMaterial* materials;
-  __global const float* normals;  /* KD_FEATURE_NORMALS */
-  __global const float* uvs;      /* KD_FEATURE_TEXTURES */
-  __global const float* tangents; /* KD_FEATURE_NORMAL_MAP: x, y, z, w per vertex */
-  __global const PtTexture* textures;
-  __global const float4* texels;
-  __global const PtLight* lights;
-  __global const float* env_texels;    /* KD_FEATURE_ENVIRONMENT: RGB (kernels/pt_environment.h) */
-  __global const float* env_cdf;
-  __global const PtPunctual* punctuals; /* KD_FEATURE_PUNCTUAL */
-  __global const float* coat_tables;    /* KD_FEATURE_METALLIC_ROUGHNESS (kernels/pt_coat.h) */
+  KD_GLOBAL const kd_u32* indices;  /* 3 per triangle: vertex numbers of normals and uvs */
+  KD_GLOBAL const kd_u32* material_ids;
+  KD_GLOBAL const PtMaterial* materials;
+  KD_GLOBAL const float* normals;  /* KD_FEATURE_NORMALS */
+  KD_GLOBAL const float* uvs;      /* KD_FEATURE_TEXTURES */
+  KD_GLOBAL const float* tangents; /* KD_FEATURE_NORMAL_MAP: x, y, z, w per vertex */
+  KD_GLOBAL const PtTexture* textures;
+  KD_GLOBAL const float4* texels;
+  KD_GLOBAL const PtLight* lights;
+  KD_GLOBAL const float* env_texels;    /* KD_FEATURE_ENVIRONMENT: RGB (kernels/pt_environment.h) */
+  KD_GLOBAL const float* env_cdf;
+  KD_GLOBAL const PtPunctual* punctuals; /* KD_FEATURE_PUNCTUAL */
+  KD_GLOBAL const float* coat_tables;    /* KD_FEATURE_METALLIC_ROUGHNESS (kernels/pt_coat.h) */
 } PtSceneData;
 
+/* The argument list every path-tracing kernel starts with (kernels/pt_scene_args.h), and the one
+ * place a PtSceneData is made from it: by the kernels, and by the C++ build from the same
+ * buffers' contents. */
+#define PT_SCENE_ARG(type, name) KD_GLOBAL const type *name,
+#define PT_SCENE_ARGS PT_SCENE_BUFFERS(PT_SCENE_ARG, PT_SCENE_ARG) KD_GLOBAL const PtRenderParams *params
+#define PT_SCENE_ARG_NAME(type, name) name,
+
+KD_INLINE PtSceneData pt_make_scene(PT_SCENE_ARGS) {
+  PtSceneData scene;
+  scene.kd.nodes = nodes;
+  scene.kd.leaf_triangles = leaf_triangles;
+  scene.kd.triangle_vertices = triangle_vertices;
+  for (int i = 0; i < 3; ++i) {
+    scene.kd.bounds_min[i] = params->bounds_min[i];
+    scene.kd.bounds_max[i] = params->bounds_max[i];
+  }
+  scene.indices = indices;
+  scene.material_ids = material_ids;
+  scene.materials = materials;
+  scene.normals = normals;
+  scene.uvs = uvs;
+  scene.tangents = tangents;
+  scene.textures = textures;
+  scene.texels = texels;
+  scene.lights = lights;
+  scene.env_texels = env_texels;
+  scene.env_cdf = env_cdf;
+  scene.punctuals = punctuals;
+  scene.coat_tables = coat_tables;
+  return scene;
+}
+#define PT_MAKE_SCENE() pt_make_scene(PT_SCENE_BUFFERS(PT_SCENE_ARG_NAME, PT_SCENE_ARG_NAME) params)
+
 typedef struct PtPath {
-  float4 origin, direction;
-  float4 throughput, radiance;
-  float4 shadow_origin, shadow_span; /* shadow ray: origin + t * span, 0 < t < 1 */
-  float4 shadow_contribution;
-  float4 albedo, normal;             /* first-hit AOVs */
+  float3 origin, direction;
+  float3 throughput, radiance;
+  float3 shadow_origin, shadow_span; /* shadow ray: origin + t * span, 0 < t < 1 */
+  float3 shadow_contribution;
+  float3 albedo, normal;             /* first-hit AOVs */
   float depth;
   float bsdf_pdf;                    /* pdf of the last BSDF sample, 0 after a delta lobe */
   kd_u32 pixel, sample, bounce;
@@ -55,36 +89,28 @@ inline float3 pt_corner(const KdSceneView* kd, uint triangle, uint corner) {
 }
 
 inline RayRecord pt_ray(float3 origin, float3 direction, float tmax) {
-  RayRecord ray;
-  ray.ox = origin.x;
-  ray.oy = origin.y;
-  ray.oz = origin.z;
-  ray.dx = direction.x;
-  ray.dy = direction.y;
-  ray.dz = direction.z;
-  ray.tmin = 0.0f;
-  ray.tmax = tmax;
+  RayRecord ray = {origin.x, origin.y, origin.z, direction.x, direction.y, direction.z, 0.0f, tmax};
   return ray;
 }
 /* Sample value `dim` (PT_DIM_*, kernels/pt_rng.h) of the path's current bounce, or both values
  * of the pair starting at even `dim`. */
-inline float pt_path_sample(const PtPath* path, __global const PtRenderParams* params, uint dim) {
+inline float pt_path_sample(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
   return pt_sample(params->sampler, params->seed, path->pixel, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim);
 }
-inline float2 pt_sample2(__global const PtRenderParams* params, uint pixel, uint sample, uint dimension) {
+inline float2 pt_sample2(KD_GLOBAL const PtRenderParams* params, uint pixel, uint sample, uint dimension) {
   PtBits2 bits = pt_sample_bits2(params->sampler, params->seed, pixel, sample, dimension);
-  return (float2)(pt_bits_to_unit(bits.x), pt_bits_to_unit(bits.y));
+  return KD_FLOAT2(pt_bits_to_unit(bits.x), pt_bits_to_unit(bits.y));
 }
-inline float2 pt_path_sample2(const PtPath* path, __global const PtRenderParams* params, uint dim) {
+inline float2 pt_path_sample2(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
   return pt_sample2(params, path->pixel, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim);
 }
 
-inline RayRecord pt_path_ray(const PtPath* path) { return pt_ray(path->origin.xyz, path->direction.xyz, INFINITY); }
-inline RayRecord pt_shadow_ray(const PtPath* path) { return pt_ray(path->shadow_origin.xyz, path->shadow_span.xyz, 1.0f); }
+inline RayRecord pt_path_ray(const PtPath* path) { return pt_ray(path->origin, path->direction, INFINITY); }
+inline RayRecord pt_shadow_ray(const PtPath* path) { return pt_ray(path->shadow_origin, path->shadow_span, 1.0f); }
 
 #ifdef KD_FEATURE_ALPHA
 /* A number of the path's current bounce for hashing alpha decisions (kernels/pt_material.h). */
-inline uint pt_path_key(const PtPath* path, __global const PtRenderParams* params) {
+inline uint pt_path_key(const PtPath* path, KD_GLOBAL const PtRenderParams* params) {
   return pt_hash32(params->seed ^ pt_hash32(path->pixel ^ pt_hash32(path->sample ^ pt_hash32(path->bounce))));
 }
 #define PT_MAX_ALPHA_LAYERS 64
@@ -92,7 +118,7 @@ inline uint pt_path_key(const PtPath* path, __global const PtRenderParams* param
 
 /* Whether the shadow ray is blocked; with alpha-tested surfaces, the closest hits are walked and
  * those the ray passes through skipped (at most PT_MAX_ALPHA_LAYERS of them). */
-inline int pt_path_occluded(const PtSceneData* scene, const PtPath* path, __global const PtRenderParams* params) {
+inline int pt_path_occluded(const PtSceneData* scene, const PtPath* path, KD_GLOBAL const PtRenderParams* params) {
   RayRecord ray = pt_shadow_ray(path);
 #ifdef KD_FEATURE_ALPHA
   uint key = pt_path_key(path, params) ^ 0x9e3779b9u; /* decided apart from the bounce ray's */
@@ -111,19 +137,19 @@ inline int pt_path_occluded(const PtSceneData* scene, const PtPath* path, __glob
 #endif
 }
 
-inline void pt_path_begin(PtPath* path, __global const PtRenderParams* params, uint pixel, uint sample) {
+inline void pt_path_begin(PtPath* path, KD_GLOBAL const PtRenderParams* params, uint pixel, uint sample) {
   uint x = pixel % params->width, y = pixel / params->width;
   float2 jitter = pt_sample2(params, pixel, sample, PT_DIM_CAMERA_X);
   float sx = 2.0f * ((float)x + jitter.x) / (float)params->width - 1.0f;
   float sy = 1.0f - 2.0f * ((float)y + jitter.y) / (float)params->height;
   float3 forward = vload3(0, params->cam_forward), right = vload3(0, params->cam_right);
   float3 up = vload3(0, params->cam_up);
-  path->origin = (float4)(vload3(0, params->cam_origin), 0.0f);
-  path->direction = (float4)(normalize(forward + sx * right + sy * up), 0.0f);
-  path->throughput = (float4)(1.0f);
-  path->radiance = (float4)(0.0f);
-  path->albedo = (float4)(0.0f);
-  path->normal = (float4)(0.0f);
+  path->origin = vload3(0, params->cam_origin);
+  path->direction = kd_normalize(forward + sx * right + sy * up);
+  path->throughput = kd_splat3(1.0f);
+  path->radiance = kd_splat3(0.0f);
+  path->albedo = kd_splat3(0.0f);
+  path->normal = kd_splat3(0.0f);
   path->depth = 0.0f;
   path->bsdf_pdf = 0.0f;
   path->pixel = pixel;
@@ -136,7 +162,7 @@ inline void pt_path_begin(PtPath* path, __global const PtRenderParams* params, u
 /* Picks an emitter by its share of the emitted power: the first entry whose cdf exceeds u. *u
  * becomes u's position inside that entry's cdf interval, a fresh uniform number in [0, 1) for
  * sampling the picked light (stratified along with the pick). */
-inline uint pt_pick_light(__global const PtLight* lights, uint count, float* u) {
+inline uint pt_pick_light(KD_GLOBAL const PtLight* lights, uint count, float* u) {
   uint lo = 0, hi = count - 1;
   while (lo < hi) {
     uint mid = (lo + hi) / 2;
@@ -150,7 +176,7 @@ inline uint pt_pick_light(__global const PtLight* lights, uint count, float* u) 
 
 /* Next-event estimation on the emissive triangles: picks one by power, then a direction towards
  * it from the shading point p by solid angle or by area (kernels/pt_spherical_triangle.h). */
-inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const PtRenderParams* params,
+inline void pt_next_event(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
                           const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng, float3 wo) {
   float2 pick_v = pt_path_sample2(path, params, PT_DIM_LIGHT_PICK);
   float u = pick_v.x;
@@ -158,17 +184,17 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const
   float3 q0 = pt_corner(&scene->kd, tri, 0);
   float3 q1 = pt_corner(&scene->kd, tri, 1);
   float3 q2 = pt_corner(&scene->kd, tri, 2);
-  float3 scaled_normal = cross(q1 - q0, q2 - q0);
-  float twice_area = length(scaled_normal);
+  float3 scaled_normal = kd_cross(q1 - q0, q2 - q0);
+  float twice_area = kd_length(scaled_normal);
   float3 light_normal = scaled_normal / twice_area;
   float3 a, b, c;
   float solid_angle = pt_triangle_solid_angle(p, q0, q1, q2, &a, &b, &c);
   float3 wi;
   float dist2;
-  float2 bary = (float2)(0.0f); /* of the point on the light, for textured emission */
+  float2 bary = KD_FLOAT2(0.0f, 0.0f); /* of the point on the light, for textured emission */
   if (pt_use_spherical_sampling(solid_angle)) {
     wi = pt_sample_spherical_triangle(a, b, c, solid_angle, u, pick_v.y);
-    float t = dot(q0 - p, light_normal) / dot(wi, light_normal);
+    float t = kd_dot(q0 - p, light_normal) / kd_dot(wi, light_normal);
     if (!(t > 0.0f && t < INFINITY)) return;
     dist2 = t * t;
 #ifdef KD_FEATURE_EMISSIVE_TEXTURE
@@ -177,15 +203,15 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const
   } else {
     bary = pt_sample_triangle(u, pick_v.y);
     float3 to_light = q0 + bary.x * (q1 - q0) + bary.y * (q2 - q0) - p;
-    dist2 = dot(to_light, to_light);
+    dist2 = kd_dot(to_light, to_light);
     if (!(dist2 > 0.0f)) return;
-    wi = to_light * rsqrt(dist2);
+    wi = to_light * kd_rsqrt(dist2);
   }
-  float cos_light = -dot(light_normal, wi);
+  float cos_light = -kd_dot(light_normal, wi);
   if (cos_light <= 0.0f) return; /* emitters are one-sided */
   float bsdf_pdf;
   float3 f_cos = pt_bsdf_eval(m, scene->coat_tables, color, n, wo, wi, &bsdf_pdf);
-  if (bsdf_pdf <= 0.0f || dot(wi, ng) <= 0.0f) return;
+  if (bsdf_pdf <= 0.0f || kd_dot(wi, ng) <= 0.0f) return;
   PtMaterial light = scene->materials[scene->material_ids[tri]];
   float3 emission = vload3(0, light.emission); /* what the emitter table's pdf is made of */
 #ifdef KD_FEATURE_EMISSIVE_TEXTURE
@@ -199,9 +225,9 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const
   float weight = pt_mis_light(light_pdf, bsdf_pdf);
   float3 origin = pt_offset_origin(p, ng);
   float3 target = pt_offset_origin(p + sqrt(dist2) * wi, light_normal);
-  path->shadow_origin = (float4)(origin, 0.0f);
-  path->shadow_span = (float4)(target - origin, 0.0f);
-  path->shadow_contribution = (float4)(path->throughput.xyz * f_cos * radiance * (weight / light_pdf), 0.0f);
+  path->shadow_origin = origin;
+  path->shadow_span = target - origin;
+  path->shadow_contribution = path->throughput * f_cos * radiance * (weight / light_pdf);
   path->shadow_pending = 1;
 }
 
@@ -209,21 +235,21 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, __global const
 /* Next-event estimation towards a sampled environment direction or punctual light. */
 inline void pt_shadow_towards(PtPath* path, const PtSceneData* scene, const PtMaterial* m, float3 color, float3 p,
                               float3 n, float3 ng, float3 wo, PtLightSample ls) {
-  if (dot(ls.wi, ng) <= 0.0f || pt_max3(ls.value) <= 0.0f) return;
+  if (kd_dot(ls.wi, ng) <= 0.0f || pt_max3(ls.value) <= 0.0f) return;
   float bsdf_pdf;
   float3 f_cos = pt_bsdf_eval(m, scene->coat_tables, color, n, wo, ls.wi, &bsdf_pdf);
   if (pt_max3(f_cos) <= 0.0f) return;
   float weight = ls.pdf > 0.0f ? pt_mis_light(ls.pdf, bsdf_pdf) : 1.0f;
   float3 origin = pt_offset_origin(p, ng);
-  path->shadow_origin = (float4)(origin, 0.0f);
-  path->shadow_span = (float4)(ls.wi * ls.distance, 0.0f);
-  path->shadow_contribution = (float4)(path->throughput.xyz * f_cos * ls.value * weight, 0.0f);
+  path->shadow_origin = origin;
+  path->shadow_span = ls.wi * ls.distance;
+  path->shadow_contribution = path->throughput * f_cos * ls.value * weight;
   path->shadow_pending = 1;
 }
 
 /* Picks a kind of light with the probabilities in params (its own sample dimension; rescaled, the
  * same number then picks a punctual light) and estimates its direct light. */
-inline void pt_next_event_any(PtPath* path, const PtSceneData* scene, __global const PtRenderParams* params,
+inline void pt_next_event_any(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
                               const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng, float3 wo) {
   float u = pt_path_sample(path, params, PT_DIM_LIGHT_TYPE);
 #ifdef KD_FEATURE_EMISSION
@@ -255,18 +281,18 @@ inline void pt_next_event_any(PtPath* path, const PtSceneData* scene, __global c
 #ifdef KD_FEATURE_ENVIRONMENT
 /* A ray that leaves the scene sees the environment (camera rays too), MIS-weighted against
  * next-event estimation when a BSDF sample sent it. */
-inline void pt_path_escape(PtPath* path, const PtSceneData* scene, __global const PtRenderParams* params) {
-  float2 uv = pt_env_uv(params, path->direction.xyz);
+inline void pt_path_escape(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params) {
+  float2 uv = pt_env_uv(params, path->direction);
   float weight = 1.0f;
   if (path->bsdf_pdf > 0.0f) weight = pt_mis_bsdf(path->bsdf_pdf, pt_env_pdf(scene->env_cdf, params, uv));
-  path->radiance.xyz += path->throughput.xyz * pt_env_lookup(scene->env_texels, params, uv) * weight;
+  path->radiance += path->throughput * pt_env_lookup(scene->env_texels, params, uv) * weight;
 }
 #endif
 
 /* Advances the path by its closest hit. Bounce k is the k-th surface the path meets; light
  * is gathered at it (emission, and next-event estimation for surface k+1's light) and a new
  * direction sampled while k <= max_bounces, as Cycles counts: max_bounces 0 is direct light only. */
-inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const PtRenderParams* params,
+inline void pt_path_shade(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
                           HitRecord hit) {
   path->shadow_pending = 0;
   if (hit.triangle == KD_NO_HIT) {
@@ -277,23 +303,23 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
     return;
   }
   uint k = path->bounce;
-  __global const kd_u32* idx = scene->indices + 3 * hit.triangle;
+  KD_GLOBAL const kd_u32* idx = scene->indices + 3 * hit.triangle;
   float3 p0 = pt_corner(&scene->kd, hit.triangle, 0);
   float3 p1 = pt_corner(&scene->kd, hit.triangle, 1);
   float3 p2 = pt_corner(&scene->kd, hit.triangle, 2);
   float w0 = 1.0f - hit.u - hit.v;
   float3 p = w0 * p0 + hit.u * p1 + hit.v * p2;
-  float3 wo = -path->direction.xyz;
-  float3 ng = normalize(cross(p1 - p0, p2 - p0));
-  int front = dot(ng, wo) > 0.0f;
+  float3 wo = -path->direction;
+  float3 ng = kd_normalize(kd_cross(p1 - p0, p2 - p0));
+  int front = kd_dot(ng, wo) > 0.0f;
   float3 ng_facing = front ? ng : -ng;
   float3 n = ng_facing;
 #ifdef KD_FEATURE_NORMALS
   float3 ns = w0 * pt_load3(scene->normals, idx[0]) + hit.u * pt_load3(scene->normals, idx[1]) +
               hit.v * pt_load3(scene->normals, idx[2]);
-  if (dot(ns, ns) > 0.0f) {
-    ns = normalize(ns);
-    n = dot(ns, ng_facing) < 0.0f ? -ns : ns;
+  if (kd_dot(ns, ns) > 0.0f) {
+    ns = kd_normalize(ns);
+    n = kd_dot(ns, ng_facing) < 0.0f ? -ns : ns;
   }
 #endif
   PtMaterial m = scene->materials[scene->material_ids[hit.triangle]];
@@ -301,7 +327,7 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
   if (m.alpha_cutoff != 0.0f && pt_alpha_passes(scene->indices, scene->material_ids, scene->materials, scene->uvs,
                                                 scene->textures, scene->texels, hit.triangle, hit.u, hit.v,
                                                 pt_path_key(path, params))) {
-    path->origin = (float4)(pt_offset_origin(p, -ng_facing), 0.0f); /* the same bounce goes on beyond */
+    path->origin = pt_offset_origin(p, -ng_facing); /* the same bounce goes on beyond */
     return;
   }
 #endif
@@ -309,11 +335,11 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
   pt_apply_textures(&m, &color, &n, ng, ng_facing, scene->uvs, scene->tangents, scene->textures, scene->texels, idx,
                     hit.u, hit.v);
   if (k == 0) {
-    path->albedo = (float4)(color, 0.0f);
-    path->normal = (float4)(n, 0.0f);
+    path->albedo = color;
+    path->normal = n;
     path->depth = hit.t;
   }
-  float3 beta = path->throughput.xyz;
+  float3 beta = path->throughput;
 #ifdef KD_FEATURE_EMISSION
   if (m.type == PT_EMISSIVE && front) {
     float3 emission = vload3(0, m.emission);
@@ -327,13 +353,13 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
       /* the density next-event estimation gives this direction, measured from the ray's origin
        * (the previous shading point, moved off its surface by a few ulps) */
       float3 a, b, c;
-      float solid_angle = pt_triangle_solid_angle(path->origin.xyz, p0, p1, p2, &a, &b, &c);
+      float solid_angle = pt_triangle_solid_angle(path->origin, p0, p1, p2, &a, &b, &c);
       float pick_per_area = PT_SELECT_TRIANGLES(params) * pt_luminance(emission) * params->light_area_pdf_scale;
-      float light_pdf = pt_triangle_light_pdf(pick_per_area, 0.5f * length(cross(p1 - p0, p2 - p0)), solid_angle,
-                                              hit.t * hit.t, dot(ng, wo));
+      float light_pdf = pt_triangle_light_pdf(pick_per_area, 0.5f * kd_length(kd_cross(p1 - p0, p2 - p0)), solid_angle,
+                                              hit.t * hit.t, kd_dot(ng, wo));
       weight = pt_mis_bsdf(path->bsdf_pdf, light_pdf);
     }
-    path->radiance.xyz += beta * radiance * weight;
+    path->radiance += beta * radiance * weight;
   }
 #endif
   if (k > params->max_bounces) {
@@ -347,7 +373,7 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
       return;
     }
     beta /= survive;
-    path->throughput.xyz = beta;
+    path->throughput = beta;
   }
 #if defined(KD_FEATURE_ENVIRONMENT) || defined(KD_FEATURE_PUNCTUAL)
   if (!pt_is_delta(m.type)) pt_next_event_any(path, scene, params, &m, color, p, n, ng_facing, wo);
@@ -361,20 +387,20 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, __global const
   float u_lobe = 0.0f;
 #endif
   PtBsdfSample s = pt_bsdf_sample(&m, scene->coat_tables, color, n, wo, front, u.x, u.y, u_lobe);
-  float side = dot(s.wi, ng_facing);
+  float side = kd_dot(s.wi, ng_facing);
   if (pt_max3(s.weight) <= 0.0f || (s.transmits ? side >= 0.0f : side <= 0.0f)) {
     path->alive = 0;
     return;
   }
-  path->throughput.xyz = beta * s.weight;
+  path->throughput = beta * s.weight;
   path->bsdf_pdf = s.is_delta ? 0.0f : s.pdf;
-  path->origin = (float4)(pt_offset_origin(p, s.transmits ? -ng_facing : ng_facing), 0.0f);
-  path->direction = (float4)(s.wi, 0.0f);
+  path->origin = pt_offset_origin(p, s.transmits ? -ng_facing : ng_facing);
+  path->direction = s.wi;
   path->bounce = k + 1;
 }
 
 inline void pt_path_resolve_shadow(PtPath* path, int occluded) {
-  if (path->shadow_pending && !occluded) path->radiance.xyz += path->shadow_contribution.xyz;
+  if (path->shadow_pending && !occluded) path->radiance += path->shadow_contribution;
   path->shadow_pending = 0;
 }
 
@@ -385,11 +411,11 @@ inline long pt_fixed(float value, uint* nonfinite) {
     return 0;
   }
   value = clamp(value, -PT_FIXED_MAX, PT_FIXED_MAX);
-  return convert_long(rint(value * (float)(1 << PT_FIXED_BITS)));
+  return (long)rint(value * (float)(1 << PT_FIXED_BITS));
 }
 
 /* Adds the finished sample into per-pixel channel sums: radiance, then the enabled AOVs. */
-inline void pt_path_accumulate(const PtPath* path, __global const PtRenderParams* params, long* sums,
+inline void pt_path_accumulate(const PtPath* path, KD_GLOBAL const PtRenderParams* params, long* sums,
                                uint* nonfinite) {
   uint c = 0;
   sums[c++] += pt_fixed(path->radiance.x, nonfinite);
@@ -406,6 +432,26 @@ inline void pt_path_accumulate(const PtPath* path, __global const PtRenderParams
     sums[c++] += pt_fixed(path->normal.z, nonfinite);
   }
   if (params->aov_mask & PT_AOV_DEPTH) sums[c++] += pt_fixed(path->depth, nonfinite);
+}
+
+/* Traces sample `sample` of `pixel` to its end and adds it to the pixel's channel sums; returns
+ * the number of rays traced. The megakernel's whole per-sample work, and the C++ build's. */
+inline uint pt_render_sample(const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params, uint pixel, uint sample,
+                             long* sums, uint* nonfinite) {
+  uint rays = 0;
+  PtPath path;
+  pt_path_begin(&path, params, pixel, sample);
+  while (path.alive) {
+    HitRecord hit = kd_intersect_closest(&scene->kd, pt_path_ray(&path));
+    ++rays;
+    pt_path_shade(&path, scene, params, hit);
+    if (path.shadow_pending) {
+      ++rays;
+      pt_path_resolve_shadow(&path, pt_path_occluded(scene, &path, params));
+    }
+  }
+  pt_path_accumulate(&path, params, sums, nonfinite);
+  return rays;
 }
 
 #endif /* PT_PATH_H */

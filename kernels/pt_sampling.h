@@ -1,14 +1,16 @@
-/* Sampling helpers for the path tracer (OpenCL C only: uses float3 arithmetic). */
+/* Sampling helpers for the path tracer. */
 #ifndef PT_SAMPLING_H
 #define PT_SAMPLING_H
+
+#include "kd_math.h"
 
 #define PT_PI 3.14159265358979f
 #define PT_INV_PI 0.318309886183791f
 
 inline float pt_max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
 inline float pt_luminance(float3 c) { return (c.x + c.y + c.z) * (1.0f / 3.0f); }
-inline float3 pt_load3(__global const float* array, uint index) {
-  return (float3)(array[3 * index], array[3 * index + 1], array[3 * index + 2]);
+inline float3 pt_load3(KD_GLOBAL const float* array, uint index) {
+  return KD_FLOAT3(array[3 * index], array[3 * index + 1], array[3 * index + 2]);
 }
 
 /* Orthonormal basis around unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited"). */
@@ -16,8 +18,8 @@ inline void pt_basis(float3 n, float3* t, float3* b) {
   float sign = copysign(1.0f, n.z);
   float a = -1.0f / (sign + n.z);
   float c = n.x * n.y * a;
-  *t = (float3)(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  *b = (float3)(c, sign + n.y * n.y * a, -n.y);
+  *t = KD_FLOAT3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  *b = KD_FLOAT3(c, sign + n.y * n.y * a, -n.y);
 }
 
 inline float3 pt_to_world(float3 v, float3 n) {
@@ -31,21 +33,23 @@ inline float3 pt_sample_cosine(float3 n, float u1, float u2) {
   float r = sqrt(u1);
   float phi = 2.0f * PT_PI * u2;
   float z = sqrt(fmax(0.0f, 1.0f - u1));
-  return pt_to_world((float3)(r * cos(phi), r * sin(phi), z), n);
+  float sin_phi, cos_phi;
+  kd_sincos(phi, &sin_phi, &cos_phi);
+  return pt_to_world(KD_FLOAT3(r * cos_phi, r * sin_phi, z), n);
 }
 
 /* Uniform point on a triangle as barycentrics of vertices 1 and 2. */
 inline float2 pt_sample_triangle(float u1, float u2) {
   float s = sqrt(u1);
-  return (float2)(s * (1.0f - u2), s * u2);
+  return KD_FLOAT2(s * (1.0f - u2), s * u2);
 }
 
 /* Barycentrics of vertices 1 and 2 of the point q0 + d of the plane through q0 with edges e1, e2. */
 inline float2 pt_barycentrics(float3 d, float3 e1, float3 e2) {
-  float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
-  float p1 = dot(d, e1), p2 = dot(d, e2);
+  float d11 = kd_dot(e1, e1), d12 = kd_dot(e1, e2), d22 = kd_dot(e2, e2);
+  float p1 = kd_dot(d, e1), p2 = kd_dot(d, e2);
   float inverse = 1.0f / (d11 * d22 - d12 * d12);
-  return (float2)((d22 * p1 - d12 * p2) * inverse, (d11 * p2 - d12 * p1) * inverse);
+  return KD_FLOAT2((d22 * p1 - d12 * p2) * inverse, (d11 * p2 - d12 * p1) * inverse);
 }
 
 inline float pt_power_heuristic(float pdf_a, float pdf_b) {
@@ -61,11 +65,12 @@ inline float3 pt_offset_origin(float3 p, float3 n) {
   const float origin = 1.0f / 32.0f;
   const float float_scale = 1.0f / 65536.0f;
   const float int_scale = 256.0f;
-  int3 of = convert_int3(int_scale * n);
-  float3 p_int = (float3)(as_float(as_int(p.x) + (p.x < 0 ? -of.x : of.x)),
-                          as_float(as_int(p.y) + (p.y < 0 ? -of.y : of.y)),
-                          as_float(as_int(p.z) + (p.z < 0 ? -of.z : of.z)));
-  return (float3)(fabs(p.x) < origin ? p.x + float_scale * n.x : p_int.x,
+  /* integer steps of the bit patterns (as unsigned, which wraps like the signed sum would) */
+  kd_i32 ox = (kd_i32)(int_scale * n.x), oy = (kd_i32)(int_scale * n.y), oz = (kd_i32)(int_scale * n.z);
+  float3 p_int = KD_FLOAT3(kd_as_float(kd_as_uint(p.x) + (kd_u32)(p.x < 0 ? -ox : ox)),
+                           kd_as_float(kd_as_uint(p.y) + (kd_u32)(p.y < 0 ? -oy : oy)),
+                           kd_as_float(kd_as_uint(p.z) + (kd_u32)(p.z < 0 ? -oz : oz)));
+  return KD_FLOAT3(fabs(p.x) < origin ? p.x + float_scale * n.x : p_int.x,
                   fabs(p.y) < origin ? p.y + float_scale * n.y : p_int.y,
                   fabs(p.z) < origin ? p.z + float_scale * n.z : p_int.z);
 }

@@ -6,12 +6,14 @@
 
 #define PT_WAVE_BATCH 16u
 
-/* Claims the next batch of paths, [*first, *end); false once every path is taken. */
-inline bool pt_wave_claim(__global uint* next_path, __global const PtRenderParams* params, uint* first, uint* end) {
+/* Steps *i to this work-item's next path, claiming a new batch [*i, *end) from the counter when
+ * the current one is done (start with *i = *end = 0); false once every path is taken. */
+inline bool pt_wave_next(__global uint* next_path, __global const PtRenderParams* params, uint* i, uint* end) {
+  if (++*i < *end) return true;
   uint count = params->width * params->height;
-  *first = atomic_add(next_path, PT_WAVE_BATCH);
-  *end = min(*first + PT_WAVE_BATCH, count);
-  return *first < count;
+  *i = atomic_add(next_path, PT_WAVE_BATCH);
+  *end = min(*i + PT_WAVE_BATCH, count);
+  return *i < count;
 }
 
 __kernel void pt_wave_begin(PT_SCENE_ARGS, __global PtPath* paths, uint sample) {
@@ -26,14 +28,11 @@ __kernel void pt_wave_extend(PT_SCENE_ARGS, __global PtPath* paths, __global Hit
                              __global uint* next_path, __global ulong* stats) {
   PtSceneData scene = PT_MAKE_SCENE();
   ulong rays = 0;
-  uint first, end;
-  while (pt_wave_claim(next_path, params, &first, &end)) {
-    for (uint i = first; i < end; ++i) {
-      if (!paths[i].alive) continue;
-      PtPath path = paths[i];
-      hits[i] = kd_intersect_closest(&scene.kd, pt_path_ray(&path));
-      ++rays;
-    }
+  for (uint i = 0, end = 0; pt_wave_next(next_path, params, &i, &end);) {
+    if (!paths[i].alive) continue;
+    PtPath path = paths[i];
+    hits[i] = kd_intersect_closest(&scene.kd, pt_path_ray(&path));
+    ++rays;
   }
   pt_add_stats(stats, rays, 0);
 }
@@ -51,15 +50,12 @@ __kernel void pt_wave_shadow(PT_SCENE_ARGS, __global PtPath* paths, __global uin
                              __global ulong* stats) {
   PtSceneData scene = PT_MAKE_SCENE();
   ulong rays = 0;
-  uint first, end;
-  while (pt_wave_claim(next_path, params, &first, &end)) {
-    for (uint i = first; i < end; ++i) {
-      if (!paths[i].shadow_pending) continue;
-      PtPath path = paths[i];
-      pt_path_resolve_shadow(&path, pt_path_occluded(&scene, &path, params));
-      ++rays;
-      paths[i] = path;
-    }
+  for (uint i = 0, end = 0; pt_wave_next(next_path, params, &i, &end);) {
+    if (!paths[i].shadow_pending) continue;
+    PtPath path = paths[i];
+    pt_path_resolve_shadow(&path, pt_path_occluded(&scene, &path, params));
+    ++rays;
+    paths[i] = path;
   }
   pt_add_stats(stats, rays, 0);
 }

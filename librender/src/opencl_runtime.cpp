@@ -150,6 +150,9 @@ Runtime::Runtime(const DeviceInfo& info) : info_(info) {
   check(status, "clCreateContext");
   queue_ = clCreateCommandQueue(context_, device_, 0, &status);
   check(status, "clCreateCommandQueue");
+  cl_device_fp_config fp_config = 0;
+  check(clGetDeviceInfo(device_, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp_config, &fp_config, nullptr), "clGetDeviceInfo");
+  if (fp_config & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) common_options_ = "-cl-fp32-correctly-rounded-divide-sqrt";
 }
 
 Runtime::~Runtime() {

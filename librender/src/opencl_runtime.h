@@ -56,12 +56,16 @@ class Runtime {
   Runtime& operator=(const Runtime&) = delete;
 
   const DeviceInfo& info() const { return info_; }
+  // Options every program gets: correctly rounded float division and sqrt where the device
+  // offers them, so the kernels' arithmetic is the C++ build's (kernels/kd_math.h).
+  const std::string& common_options() const { return common_options_; }
   cl_context context() const { return context_; }
   cl_command_queue queue() const { return queue_; }
   cl_device_id device() const { return device_; }
 
-  // kernels/<entry_file> with its includes expanded, built with `options`: from this process's
-  // programs, else the disk cache, else compiled (and stored). A failed build throws with the log.
+  // kernels/<entry_file> with its includes expanded, built with `options` and the device's
+  // common_options(): from this process's programs, else the disk cache, else compiled (and
+  // stored). A failed build throws with the log.
   ProgramBuild program(const std::string& entry_file, const std::string& options);
 
   // A device buffer; copies `bytes` from `data` when it is non-null. Zero sizes get 16 bytes so
@@ -78,6 +82,7 @@ class Runtime {
   cl_device_id device_ = nullptr;
   cl_context context_ = nullptr;
   cl_command_queue queue_ = nullptr;
+  std::string common_options_;
   std::mutex mutex_;
   std::map<std::string, Program> programs_;  // by cache key
 };

@@ -117,7 +117,9 @@ std::string expand_kernel_source(const std::string& entry_file) {
   return out.str();
 }
 
-ProgramBuild Runtime::program(const std::string& entry_file, const std::string& options) {
+ProgramBuild Runtime::program(const std::string& entry_file, const std::string& feature_options) {
+  const std::string options =
+      common_options_.empty() ? feature_options : feature_options + " " + common_options_;
   auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   std::string source = expand_kernel_source(entry_file);

@@ -4,6 +4,8 @@
 
 #include <kdray/error.h>
 
+#include <kernels/pt_scene_args.h>
+
 #include <xxhash.h>
 
 #include <algorithm>
@@ -383,6 +385,31 @@ std::string join_distinct(const std::vector<std::string>& items, const char* sep
 }
 
 }  // namespace
+
+KernelInputs read_kernel_inputs(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
+                                const DeviceSelection& device) {
+  check_settings(settings);
+  std::unique_ptr<DeviceRender> render = prepare_device(scene, tree, settings, device, render_camera(scene, settings),
+                                                        render_environment(scene, settings));
+  RenderJob& job = render->job;
+  job.set_pass(settings.sample_offset, settings.spp);
+  auto read_all = [&](const cl::Buffer& buffer) {
+    size_t bytes = 0;
+    cl::check(clGetMemObjectInfo(buffer.get(), CL_MEM_SIZE, sizeof bytes, &bytes, nullptr), "clGetMemObjectInfo");
+    std::vector<uint8_t> contents(bytes);
+    cl::read_buffer(job.runtime.queue(), buffer, bytes, contents.data());
+    return contents;
+  };
+  KernelInputs inputs;
+#define KD_READ_GEOMETRY(type, name) inputs.buffers.push_back(read_all(job.scene.geometry.name));
+#define KD_READ_SHADING(type, name) inputs.buffers.push_back(read_all(job.scene.name));
+  PT_SCENE_BUFFERS(KD_READ_GEOMETRY, KD_READ_SHADING)
+#undef KD_READ_GEOMETRY
+#undef KD_READ_SHADING
+  inputs.params = read_all(job.params_buffer);
+  inputs.options = render->stats.kernel_options;
+  return inputs;
+}
 
 Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settings, const DeviceSelection& device,
             RenderStats* stats_out, const RenderProgress& progress) {

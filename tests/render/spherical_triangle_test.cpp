@@ -1,36 +1,13 @@
-// Solid-angle sampling of triangle lights (kernels/pt_spherical_triangle.h, compiled here as C++
-// over a minimal float3): the solid angle is right on known cases, sampled directions fall inside
-// the triangle, and their density, measured as the Jacobian of the map from [0,1)^2, equals the
-// 1 / solid angle that MIS evaluates for the same direction.
-#include <algorithm>
-#include <cmath>
-
-using std::atan2;
-using std::cos;
-using std::fabs;
-using std::fmax;
-using std::fmin;
-using std::sin;
-using std::sqrt;
-
-struct float3 {
-  float x, y, z;
-};
-inline float3 operator+(float3 a, float3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline float3 operator-(float3 a, float3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline float3 operator-(float3 a) { return {-a.x, -a.y, -a.z}; }
-inline float3 operator*(float s, float3 a) { return {s * a.x, s * a.y, s * a.z}; }
-inline float3 operator/(float3 a, float s) { return {a.x / s, a.y / s, a.z / s}; }
-inline float dot(float3 a, float3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline float3 cross(float3 a, float3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-inline float length(float3 a) { return sqrt(dot(a, a)); }
-inline float3 normalize(float3 a) { return a / length(a); }
-
+// Solid-angle sampling of triangle lights (kernels/pt_spherical_triangle.h, compiled here as
+// C++): the solid angle is right on known cases, sampled directions fall inside the triangle,
+// and their density, measured as the Jacobian of the map from [0,1)^2, equals the 1 / solid
+// angle that MIS evaluates for the same direction.
 #include <kernels/pt_spherical_triangle.h>
 
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -120,7 +97,7 @@ TEST(SphericalTriangle, SampledDirectionsHitTheTriangle) {
       for (int j = 0; j <= 16; ++j) {
         float u0 = std::min(i / 16.0f, 0x1.fffffep-1f), u1 = std::min(j / 16.0f, 0x1.fffffep-1f);
         float3 d = sample(p, t, u0, u1);
-        ASSERT_NEAR(length(d), 1.0f, 1e-5f);
+        ASSERT_NEAR(kd_length(d), 1.0f, 1e-5f);
         ASSERT_GT(hit_distance(p, d, t, 1e-3), 0) << "u = " << u0 << ", " << u1 << ", solid angle " << solid_angle(p, t);
       }
     }

@@ -83,6 +83,18 @@ using RenderProgress = std::function<void(uint32_t done, uint32_t total)>;
 Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
             const DeviceSelection& device, RenderStats* stats = nullptr, const RenderProgress& progress = {});
 
+// What the path-tracing kernel reads for a render of these settings' samples, as bytes read back
+// from the device after the upload: each buffer of PT_SCENE_BUFFERS (kernels/pt_scene_args.h) in
+// its order, then one PtRenderParams, with the program's feature options. The C++ build of
+// kernels/pt_path.h runs on these to check itself against the kernel bit for bit.
+struct KernelInputs {
+  std::vector<std::vector<uint8_t>> buffers;
+  std::vector<uint8_t> params;
+  std::string options;
+};
+KernelInputs read_kernel_inputs(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
+                                const DeviceSelection& device);
+
 // The OpenCL build options (feature defines) for a scene: only what it uses, so a diffuse-only
 // scene compiles a diffuse-only kernel.
 std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device);

@@ -1,0 +1,92 @@
+/* OpenCL's float2/float3/float4 and the exact built-ins the path tracer uses, for its C++ build,
+ * so kernels/pt_path.h and everything it includes compile as both languages.
+ *
+ * Both sides build vectors with KD_FLOAT2/3/4: in C++ an OpenCL literal such as (float3)(a, b, c)
+ * would be a comma expression. Element-wise operators and the built-ins kept here (fmin, fmax,
+ * fabs, floor, sqrt, copysign, rint, isfinite, clamp, vload2, vload3, vload4) give correctly rounded or
+ * exact results in both languages, so the same expression has the same bits on both sides.
+ * Operations whose OpenCL built-in may be computed in another order or approximated (dot,
+ * length, normalize, mix, rsqrt, the trigonometric functions) are not provided here: the device
+ * code calls the explicit versions of kernels/kd_math.h instead. */
+#ifndef KD_VECTOR_H
+#define KD_VECTOR_H
+
+#include "kd_compat.h"
+
+#ifdef __OPENCL_VERSION__
+
+#define KD_FLOAT2(x, y) ((float2)((x), (y)))
+#define KD_FLOAT3(x, y, z) ((float3)((x), (y), (z)))
+#define KD_FLOAT4(x, y, z, w) ((float4)((x), (y), (z), (w)))
+KD_INLINE float3 kd_xyz(float4 v) { return v.xyz; }
+KD_INLINE float3 kd_splat3(float s) { return (float3)(s); }
+
+#else
+
+#include <cmath>
+
+typedef unsigned int uint;
+
+using std::copysign;
+using std::fabs;
+using std::floor;
+using std::fmax;
+using std::fmin;
+using std::isfinite;
+using std::rint;
+using std::sqrt;
+
+struct float2 {
+  float x, y;
+};
+/* 16 bytes, as on OpenCL devices, so structs holding float3 have the kernel's size. */
+struct float3 {
+  float x, y, z, unused;
+};
+struct float4 {
+  float x, y, z, w;
+};
+
+#define KD_FLOAT2(x, y) (float2{(x), (y)})
+#define KD_FLOAT3(x, y, z) (float3{(x), (y), (z), 0.0f})
+#define KD_FLOAT4(x, y, z, w) (float4{(x), (y), (z), (w)})
+inline float3 kd_xyz(float4 v) { return float3{v.x, v.y, v.z, 0.0f}; }
+inline float3 kd_splat3(float s) { return float3{s, s, s, 0.0f}; }
+
+inline float2 operator+(float2 a, float2 b) { return {a.x + b.x, a.y + b.y}; }
+inline float2 operator-(float2 a, float2 b) { return {a.x - b.x, a.y - b.y}; }
+inline float2 operator*(float s, float2 a) { return {s * a.x, s * a.y}; }
+
+inline float3 operator+(float3 a, float3 b) { return KD_FLOAT3(a.x + b.x, a.y + b.y, a.z + b.z); }
+inline float3 operator-(float3 a, float3 b) { return KD_FLOAT3(a.x - b.x, a.y - b.y, a.z - b.z); }
+inline float3 operator*(float3 a, float3 b) { return KD_FLOAT3(a.x * b.x, a.y * b.y, a.z * b.z); }
+inline float3 operator/(float3 a, float3 b) { return KD_FLOAT3(a.x / b.x, a.y / b.y, a.z / b.z); }
+inline float3 operator-(float3 a) { return KD_FLOAT3(-a.x, -a.y, -a.z); }
+/* A scalar operand stands for a vector of copies of itself, as in OpenCL C. */
+inline float3 operator+(float3 a, float s) { return a + kd_splat3(s); }
+inline float3 operator+(float s, float3 a) { return kd_splat3(s) + a; }
+inline float3 operator-(float3 a, float s) { return a - kd_splat3(s); }
+inline float3 operator-(float s, float3 a) { return kd_splat3(s) - a; }
+inline float3 operator*(float3 a, float s) { return a * kd_splat3(s); }
+inline float3 operator*(float s, float3 a) { return kd_splat3(s) * a; }
+inline float3 operator/(float3 a, float s) { return a / kd_splat3(s); }
+inline float3 operator/(float s, float3 a) { return kd_splat3(s) / a; }
+inline float3& operator+=(float3& a, float3 b) { return a = a + b; }
+inline float3& operator-=(float3& a, float3 b) { return a = a - b; }
+inline float3& operator*=(float3& a, float3 b) { return a = a * b; }
+inline float3& operator*=(float3& a, float s) { return a = a * s; }
+inline float3& operator/=(float3& a, float s) { return a = a / s; }
+
+inline float4 operator+(float4 a, float4 b) { return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w}; }
+inline float4 operator*(float s, float4 a) { return {s * a.x, s * a.y, s * a.z, s * a.w}; }
+
+inline float clamp(float x, float lo, float hi) { return std::fmin(std::fmax(x, lo), hi); }
+inline int clamp(int x, int lo, int hi) { return x < lo ? lo : (x > hi ? hi : x); }
+
+inline float2 vload2(size_t i, const float* p) { return {p[2 * i], p[2 * i + 1]}; }
+inline float3 vload3(size_t i, const float* p) { return KD_FLOAT3(p[3 * i], p[3 * i + 1], p[3 * i + 2]); }
+inline float4 vload4(size_t i, const float* p) { return {p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]}; }
+
+#endif
+
+#endif /* KD_VECTOR_H */

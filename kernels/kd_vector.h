@@ -41,7 +41,7 @@ struct float2 {
 };
 /* 16 bytes, as on OpenCL devices, so structs holding float3 have the kernel's size. */
 struct float3 {
-  float x, y, z, unused;
+  float x, y, z, unused = 0.0f;
 };
 struct float4 {
   float x, y, z, w;

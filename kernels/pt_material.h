@@ -7,6 +7,7 @@
 #ifndef PT_MATERIAL_H
 #define PT_MATERIAL_H
 
+#include "kd_math.h"
 #include "kd_traverse.h"
 #include "pt_rng.h"
 #include "pt_types.h"

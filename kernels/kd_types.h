@@ -13,8 +13,8 @@ typedef struct KdNode {
   kd_u32 payload;
   kd_u32 header;
 } KdNode;
-KD_STATIC_ASSERT(sizeof(KdNode) == 8, "KdNode is 8 bytes on disk and on the device");
-KD_STATIC_ASSERT(KD_OFFSETOF(KdNode, header) == 4, "KdNode: payload, then header");
+KD_STATIC_ASSERT(sizeof(KdNode) == 8 && KD_OFFSETOF(KdNode, header) == 4,
+                 "KdNode: 8 bytes on disk and on the device, payload then header");
 
 /* The deepest tree any builder writes and read_tree accepts (kdray::BuildSettings::kMaxDepthLimit);
  * a traversal stack of this size never overflows, which is the "full stack" variant. */
@@ -36,8 +36,8 @@ typedef struct RayRecord {
   float dx, dy, dz;
   float tmin, tmax;
 } RayRecord;
-KD_STATIC_ASSERT(sizeof(RayRecord) == 32, "RayRecord is 32 bytes");
-KD_STATIC_ASSERT(KD_OFFSETOF(RayRecord, dx) == 12 && KD_OFFSETOF(RayRecord, tmin) == 24, "RayRecord layout");
+KD_STATIC_ASSERT(sizeof(RayRecord) == 32 && KD_OFFSETOF(RayRecord, dx) == 12 && KD_OFFSETOF(RayRecord, tmin) == 24,
+                 "RayRecord: 32 bytes, members where the other side reads them");
 
 /* One record of a hit file: t = +inf and triangle = KD_NO_HIT on a miss; u, v barycentrics
  * of vertices 1 and 2. 16 bytes. */
@@ -46,8 +46,8 @@ typedef struct HitRecord {
   kd_u32 triangle;
   float u, v;
 } HitRecord;
-KD_STATIC_ASSERT(sizeof(HitRecord) == 16, "HitRecord is 16 bytes");
-KD_STATIC_ASSERT(KD_OFFSETOF(HitRecord, triangle) == 4 && KD_OFFSETOF(HitRecord, u) == 8, "HitRecord layout");
+KD_STATIC_ASSERT(sizeof(HitRecord) == 16 && KD_OFFSETOF(HitRecord, triangle) == 4 && KD_OFFSETOF(HitRecord, u) == 8,
+                 "HitRecord: 16 bytes, members where the other side reads them");
 
 #define KD_NO_HIT 0xFFFFFFFFu
 

@@ -54,18 +54,12 @@ KD_INLINE PtSceneData pt_make_scene(PT_SCENE_ARGS) {
     scene.kd.bounds_max[i] = params->bounds_max[i];
   }
   scene.indices = indices;
-  scene.material_ids = material_ids;
-  scene.materials = materials;
-  scene.normals = normals;
-  scene.uvs = uvs;
-  scene.tangents = tangents;
-  scene.textures = textures;
-  scene.texels = texels;
-  scene.lights = lights;
-  scene.env_texels = env_texels;
-  scene.env_cdf = env_cdf;
-  scene.punctuals = punctuals;
-  scene.coat_tables = coat_tables;
+  /* Every shading buffer is the scene field of its own name. */
+#define PT_SCENE_SKIP(type, name)
+#define PT_SCENE_SET(type, name) scene.name = name;
+  PT_SCENE_BUFFERS(PT_SCENE_SKIP, PT_SCENE_SET)
+#undef PT_SCENE_SET
+#undef PT_SCENE_SKIP
   return scene;
 }
 #define PT_MAKE_SCENE() pt_make_scene(PT_SCENE_BUFFERS(PT_SCENE_ARG_NAME, PT_SCENE_ARG_NAME) params)

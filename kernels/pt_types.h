@@ -25,10 +25,9 @@ typedef struct PtMaterial {
   kd_i32 normal_texture;      /* linear tangent-space normal map */
   kd_i32 emissive_texture;
 } PtMaterial;
-KD_STATIC_ASSERT(sizeof(PtMaterial) == 64, "PtMaterial is 64 bytes");
-KD_STATIC_ASSERT(KD_OFFSETOF(PtMaterial, type) == 12 && KD_OFFSETOF(PtMaterial, emission) == 16 &&
-                     KD_OFFSETOF(PtMaterial, emissive_texture) == 60,
-                 "PtMaterial layout");
+KD_STATIC_ASSERT(sizeof(PtMaterial) == 64 && KD_OFFSETOF(PtMaterial, type) == 12 &&
+                     KD_OFFSETOF(PtMaterial, emission) == 16 && KD_OFFSETOF(PtMaterial, emissive_texture) == 60,
+                 "PtMaterial: 64 bytes, members where the other side reads them");
 
 /* Texels are linear RGBA float4 (decoded from sRGB on the host), rows top to bottom. */
 typedef struct PtTexture {
@@ -36,16 +35,16 @@ typedef struct PtTexture {
   kd_u32 width, height;
   kd_u32 pad;
 } PtTexture;
-KD_STATIC_ASSERT(sizeof(PtTexture) == 16, "PtTexture is 16 bytes");
-KD_STATIC_ASSERT(KD_OFFSETOF(PtTexture, width) == 4 && KD_OFFSETOF(PtTexture, height) == 8, "PtTexture layout");
+KD_STATIC_ASSERT(sizeof(PtTexture) == 16 && KD_OFFSETOF(PtTexture, width) == 4 && KD_OFFSETOF(PtTexture, height) == 8,
+                 "PtTexture: 16 bytes, members where the other side reads them");
 
 /* One entry of the power-weighted emitter table: pick light i when cdf[i-1] <= u < cdf[i]. */
 typedef struct PtLight {
   kd_u32 triangle;
   float cdf;
 } PtLight;
-KD_STATIC_ASSERT(sizeof(PtLight) == 8, "PtLight is 8 bytes");
-KD_STATIC_ASSERT(KD_OFFSETOF(PtLight, cdf) == 4, "PtLight layout");
+KD_STATIC_ASSERT(sizeof(PtLight) == 8 && KD_OFFSETOF(PtLight, cdf) == 4,
+                 "PtLight: 8 bytes, members where the other side reads them");
 
 /* A punctual light (KD_FEATURE_PUNCTUAL), sampled by next-event estimation only. Point and spot
  * lights have an intensity in W/sr, directional lights an irradiance in W/m^2 (`power`). Spot cone:
@@ -59,10 +58,9 @@ typedef struct PtPunctual {
   float power[3];
   float cos_outer;
 } PtPunctual;
-KD_STATIC_ASSERT(sizeof(PtPunctual) == 48, "PtPunctual is 48 bytes");
-KD_STATIC_ASSERT(KD_OFFSETOF(PtPunctual, direction) == 16 && KD_OFFSETOF(PtPunctual, power) == 32 &&
-                     KD_OFFSETOF(PtPunctual, cos_outer) == 44,
-                 "PtPunctual layout");
+KD_STATIC_ASSERT(sizeof(PtPunctual) == 48 && KD_OFFSETOF(PtPunctual, direction) == 16 &&
+                     KD_OFFSETOF(PtPunctual, power) == 32 && KD_OFFSETOF(PtPunctual, cos_outer) == 44,
+                 "PtPunctual: 48 bytes, members where the other side reads them");
 
 typedef struct PtRenderParams {
   float cam_origin[4];
@@ -89,10 +87,9 @@ typedef struct PtRenderParams {
   float env_strength;
   kd_u32 pad0;
 } PtRenderParams;
-KD_STATIC_ASSERT(sizeof(PtRenderParams) == 176, "PtRenderParams is 176 bytes");
-KD_STATIC_ASSERT(KD_OFFSETOF(PtRenderParams, width) == 96 && KD_OFFSETOF(PtRenderParams, sampler) == 136 &&
-                     KD_OFFSETOF(PtRenderParams, pad0) == 172,
-                 "PtRenderParams layout");
+KD_STATIC_ASSERT(sizeof(PtRenderParams) == 176 && KD_OFFSETOF(PtRenderParams, width) == 96 &&
+                     KD_OFFSETOF(PtRenderParams, sampler) == 136 && KD_OFFSETOF(PtRenderParams, pad0) == 172,
+                 "PtRenderParams: 176 bytes, members where the other side reads them");
 
 /* Bytes of one PtPath (kernels/pt_path.h, checked there): the host sizes wavefront buffers by it. */
 #define PT_PATH_BYTES 176

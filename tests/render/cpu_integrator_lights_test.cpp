@@ -13,17 +13,8 @@ namespace kdray::test {
 namespace {
 
 TEST(CpuIntegrator, EnvironmentAndPunctualLightsMatchTheKernelBitForBit) {
-  Material sphere;
-  sphere.type = MaterialType::MetallicRoughness;
-  sphere.base_color = {0.8f, 0.5f, 0.3f};
-  sphere.metallic = 0.4f;
-  sphere.roughness = 0.35f;
-  Scene scene = make_sphere_scene(sphere);
-  Material floor;
-  floor.base_color = {0.6f, 0.6f, 0.6f};
-  scene.materials.push_back(floor);
-  const float s = 3.0f, y = -1.0f;
-  add_quad(scene, {{{-s, y, -s}, {-s, y, s}, {s, y, s}, {s, y, -s}}}, 1);
+  Scene scene = make_sphere_scene(metal_rough({0.8f, 0.5f, 0.3f}, 0.4f, 0.35f));
+  add_floor(scene, -1.0f, 3.0f, 0.6f);
   Light point;
   point.type = LightType::Point;
   point.position = {1.5f, 2.0f, 1.5f};

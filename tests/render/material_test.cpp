@@ -18,15 +18,6 @@
 namespace kdray {
 namespace {
 
-Material metal_rough(Vec3 base, float metallic, float roughness_alpha) {
-  Material m;
-  m.type = MaterialType::MetallicRoughness;
-  m.base_color = base;
-  m.metallic = metallic;
-  m.roughness = roughness_alpha;
-  return m;
-}
-
 struct SphereImage {
   Film film;
   std::vector<float> means;
@@ -75,7 +66,7 @@ SphereImage render_sphere(const Material& material, uint32_t spp = 256) {
 
 TEST(MetallicRoughness, WhiteBaseUnderASmoothCoatReflectsEverything) {
   // Coat reflectance F plus the base's share (1 - F(wo)) of the rest: 1 at every angle.
-  SphereImage image = render_sphere(metal_rough({1, 1, 1}, 0, 0.0f));
+  SphereImage image = render_sphere(test::metal_rough({1, 1, 1}, 0, 0.0f));
   EXPECT_NE(image.stats.kernel_options.find("KD_FEATURE_METALLIC_ROUGHNESS"), std::string::npos);
   const Vec3 mean = image.mean_within(0.9f);
   for (float c : {mean.x, mean.y, mean.z}) EXPECT_NEAR(c, 1.0f, 0.01f);
@@ -93,7 +84,7 @@ TEST(MetallicRoughness, WhiteBaseUnderARoughCoatReflectsWhatItsBsdfIntegratesTo)
     const double base = outside.hemispherical_mean(true, 32) / (eta * eta * (1 - inside.hemispherical_mean(false, 32)));
     auto albedo = [&](double mu) { return outside.energy(mu, false) + outside.energy(mu, true) * base; };
     const double a = albedo(1.0), b = albedo(0.93);
-    const Vec3 centre = render_sphere(metal_rough({1, 1, 1}, 0, float(alpha))).mean_within(0.3f);
+    const Vec3 centre = render_sphere(test::metal_rough({1, 1, 1}, 0, float(alpha))).mean_within(0.3f);
     std::printf("alpha %.2f: white-base albedo %.5f (normal) to %.5f (cos 0.93)\n", alpha, a, b);
     EXPECT_LT(a, 0.97) << alpha;  // the energy the rough coat loses, as Mitsuba's does
     EXPECT_GT(centre.x, std::min(a, b) - 0.005) << alpha;
@@ -104,7 +95,7 @@ TEST(MetallicRoughness, WhiteBaseUnderARoughCoatReflectsWhatItsBsdfIntegratesTo)
 TEST(MetallicRoughness, BlackBaseShowsTheCoatNotADiffuseSurface) {
   // Seen head-on, a smooth coat of index 1.5 reflects the environment with F(0) = 0.04; a
   // diffuse surface of albedo 0 would be black.
-  const Vec3 centre = render_sphere(metal_rough({0, 0, 0}, 0, 0.0f)).mean_within(0.3f);
+  const Vec3 centre = render_sphere(test::metal_rough({0, 0, 0}, 0, 0.0f)).mean_within(0.3f);
   EXPECT_NEAR(centre.x, 0.04f, 0.004f);
   EXPECT_NEAR(centre.z, 0.04f, 0.004f);
 }
@@ -116,7 +107,7 @@ TEST(MetallicRoughness, SmoothFullMetalIsAMirrorOfItsBaseColour) {
   mirror.type = MaterialType::Mirror;
   mirror.base_color = base;
   const Vec3 want = render_sphere(mirror, 16).mean_within(0.4f);
-  const Vec3 got = render_sphere(metal_rough(base, 1, 0.0f)).mean_within(0.4f);
+  const Vec3 got = render_sphere(test::metal_rough(base, 1, 0.0f)).mean_within(0.4f);
   EXPECT_NEAR(want.x, 0.9f, 1e-4f);
   EXPECT_NEAR(got.x, want.x, 0.01f * want.x);
   EXPECT_NEAR(got.y, want.y, 0.01f * want.y);
@@ -128,11 +119,8 @@ TEST(MetallicRoughness, SmoothFullMetalIsAMirrorOfItsBaseColour) {
 constexpr float kFloorAlbedo = 0.5f, kIrradiance = 2.0f;
 Film render_floor_under(const Material* occluder, RenderStats* stats) {
   Scene scene;
-  Material floor;
-  floor.base_color = {kFloorAlbedo, kFloorAlbedo, kFloorAlbedo};
-  scene.materials.push_back(floor);
+  test::add_floor(scene, 0.0f, 10.0f, kFloorAlbedo);
   const float s = 10;
-  test::add_quad(scene, {{{-s, 0, -s}, {-s, 0, s}, {s, 0, s}, {s, 0, -s}}}, 0);
   if (occluder) {
     scene.materials.push_back(*occluder);
     test::add_quad(scene, {{{-s, 1, -s}, {-s, 1, s}, {s, 1, s}, {s, 1, -s}}}, 1);

@@ -17,6 +17,28 @@ inline void add_quad(Scene& scene, const std::array<Vec3, 4>& corners, uint32_t 
   scene.material_ids.push_back(material);
 }
 
+// A glTF metallic-roughness material; roughness_alpha is the GGX alpha.
+inline Material metal_rough(Vec3 base, float metallic, float roughness_alpha) {
+  Material m;
+  m.type = MaterialType::MetallicRoughness;
+  m.base_color = base;
+  m.metallic = metallic;
+  m.roughness = roughness_alpha;
+  return m;
+}
+
+// Adds a grey diffuse square floor of half size `half_size` at height y, facing up, with a
+// material of its own. Returns that material's number.
+inline uint32_t add_floor(Scene& scene, float y, float half_size, float albedo) {
+  Material floor;
+  floor.base_color = {albedo, albedo, albedo};
+  scene.materials.push_back(floor);
+  const uint32_t material = uint32_t(scene.materials.size() - 1);
+  const float s = half_size;
+  add_quad(scene, {{{-s, y, -s}, {-s, y, s}, {s, y, s}, {s, y, -s}}}, material);
+  return material;
+}
+
 // A camera 4 units above the origin looking straight down (-Y), the image's up along -Z: it sees
 // a floor at y = 0 with +X to the right.
 inline Camera camera_above_floor(float vertical_fov_degrees) {

@@ -6,6 +6,8 @@
 
 #include <kernels/pt_coat.h>
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -168,7 +170,7 @@ double rough_dielectric_internal_reflectance(double alpha, double eta) {
 }
 
 std::vector<float> build_coat_tables(const std::vector<float>& etas) {
-  // A block costs about 0.2 s on one core and depends on eta alone: batches (kdrender --jobs)
+  // A block costs about 0.2 s of one core's time and depends on eta alone: batches (kdrender --jobs)
   // upload their scene once per frame, so blocks are kept for the life of the process.
   static std::mutex mutex;
   static std::map<float, std::vector<float>> blocks;
@@ -180,12 +182,17 @@ std::vector<float> build_coat_tables(const std::vector<float>& etas) {
   std::lock_guard<std::mutex> lock(mutex);
   for (float eta : unique) {
     std::vector<float>& block = blocks[eta];
-    for (int j = block.empty() ? 0 : PT_COAT_ALPHAS; j < PT_COAT_ALPHAS; ++j) {
-      const double roughness = double(j) / (PT_COAT_ALPHAS - 1);
-      const double alpha = roughness * roughness;
-      block.push_back(float(rough_dielectric_internal_reflectance(alpha, eta)));
-      for (int i = 0; i < PT_COAT_COSINES; ++i)
-        block.push_back(float(rough_dielectric_transmittance(double(i) / (PT_COAT_COSINES - 1), alpha, eta)));
+    if (block.empty()) {
+      // Rows are independent: one task each, every value written to its own place.
+      block.resize(PT_COAT_BLOCK);
+      tbb::parallel_for(0, PT_COAT_ALPHAS, [&block, eta](int j) {
+        const double roughness = double(j) / (PT_COAT_ALPHAS - 1);
+        const double alpha = roughness * roughness;
+        float* row = block.data() + size_t(j) * PT_COAT_ROW;
+        row[0] = float(rough_dielectric_internal_reflectance(alpha, eta));
+        for (int i = 0; i < PT_COAT_COSINES; ++i)
+          row[1 + i] = float(rough_dielectric_transmittance(double(i) / (PT_COAT_COSINES - 1), alpha, eta));
+      });
     }
     table.insert(table.end(), block.begin(), block.end());
   }

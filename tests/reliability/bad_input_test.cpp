@@ -104,6 +104,7 @@ std::vector<BadInput> table() {
       {"kdrender/damaged merge input", {"--merge", "{DIR}/good.exr", "{DIR}/damaged-exr", "-o", out + ".exr"}, 1, "damaged-exr"},
       {"kdrender/text merge input", {"--merge", "{DIR}/good.exr", "{DIR}/text.txt", "-o", out + ".exr"}, 1, "text.txt"},
       {"kdrender/zero spp", {scene, tree, "-o", out + ".png", "--spp", "0"}, 2, "spp"},
+      {"kdrender/host device", {scene, tree, "-o", out + ".png", "--device", "host"}, 2, "OpenCL devices only"},
 
       {"kdtrace/missing scene", {"{DIR}/missing.kdscene", tree, "--generate", "random"}, 1, "missing.kdscene"},
       {"kdtrace/missing rays", {scene, tree, "--rays", "{DIR}/missing.rays"}, 1, "missing.rays"},

@@ -37,7 +37,8 @@ inline CLI::Option* add_device_option(CLI::App& app, std::string& choice, bool w
   CLI::Validator names(
       [with_host](std::string& text) -> std::string {
         if (text == "auto" || text == "cpu" || text == "gpu" || text == "all" || text == "list") return {};
-        if (text == "host" && with_host) return {};
+        if (text == "host" && !with_host) return "this tool runs on OpenCL devices only, not host (cpu is PoCL)";
+        if (text == "host") return {};
         if (!text.empty() && text.size() < 64 && text.find_first_not_of("0123456789,") == std::string::npos) return {};
         return "'" + text + "' is not " + (with_host ? "host, " : "") +
                "auto, cpu, gpu, all, list, a device index or a comma-separated list of them";

@@ -6,39 +6,33 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <memory>
 
 namespace kdray {
 
-const char* material_type_name(MaterialType type) {
-  switch (type) {
-    case MaterialType::Diffuse: return "diffuse";
-    case MaterialType::Emissive: return "emissive";
-    case MaterialType::Mirror: return "mirror";
-    case MaterialType::RoughConductor: return "rough-conductor";
-    case MaterialType::Dielectric: return "dielectric";
-    case MaterialType::MetallicRoughness: return "metallic-roughness";
-  }
-  return "unknown";
+namespace {
+
+// The names reports use, indexed by each enum's value (its code in kernels/pt_codes.h, counted
+// from 0); each static_assert ties a table's length to its enum's last value.
+constexpr const char* kMaterialTypeNames[] = {"diffuse", "emissive", "mirror", "rough-conductor", "dielectric",
+                                              "metallic-roughness"};
+constexpr const char* kAlphaModeNames[] = {"opaque", "mask", "blend"};
+constexpr const char* kLightTypeNames[] = {"point", "spot", "directional"};
+static_assert(std::size(kMaterialTypeNames) == uint32_t(MaterialType::MetallicRoughness) + 1);
+static_assert(std::size(kAlphaModeNames) == uint32_t(AlphaMode::Blend) + 1);
+static_assert(std::size(kLightTypeNames) == uint32_t(LightType::Directional) + 1);
+
+template <typename Enum, size_t N>
+const char* name_of(const char* const (&names)[N], Enum value) {
+  return uint32_t(value) < N ? names[uint32_t(value)] : "unknown";
 }
 
-const char* alpha_mode_name(AlphaMode mode) {
-  switch (mode) {
-    case AlphaMode::Opaque: return "opaque";
-    case AlphaMode::Mask: return "mask";
-    case AlphaMode::Blend: return "blend";
-  }
-  return "unknown";
-}
+}  // namespace
 
-const char* light_type_name(LightType type) {
-  switch (type) {
-    case LightType::Point: return "point";
-    case LightType::Spot: return "spot";
-    case LightType::Directional: return "directional";
-  }
-  return "unknown";
-}
+const char* material_type_name(MaterialType type) { return name_of(kMaterialTypeNames, type); }
+const char* alpha_mode_name(AlphaMode mode) { return name_of(kAlphaModeNames, mode); }
+const char* light_type_name(LightType type) { return name_of(kLightTypeNames, type); }
 
 Camera default_camera(const Bounds& bounds) {
   Camera camera;

@@ -11,6 +11,9 @@
  * -ffp-contract=off. */
 #pragma OPENCL FP_CONTRACT OFF
 #define KD_INLINE inline
+/* For the small functions of the traversal's inner loops: PoCL's LLVM keeps them as calls, whose
+ * pointer arguments (t, u, v, near and far child) then go through memory. */
+#define KD_HOT_INLINE inline __attribute__((always_inline))
 #define KD_GLOBAL __global
 #define KD_CONSTANT __constant
 typedef uint kd_u32;
@@ -30,6 +33,7 @@ KD_INLINE kd_u32 kd_as_uint(float value) { return as_uint(value); }
 #include <cstdint>
 #include <cstring>
 #define KD_INLINE inline
+#define KD_HOT_INLINE inline
 #define KD_GLOBAL
 #define KD_CONSTANT
 typedef uint32_t kd_u32;

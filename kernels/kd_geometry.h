@@ -64,7 +64,7 @@ KD_INLINE float kd_safe_reciprocal(float d) {
 /* Fills `ray`; returns 0 for a ray no triangle can be hit by (non-finite numbers, zero
  * direction, empty interval). */
 KD_HOT_INLINE int kd_ray_setup(KdRay* ray, float ox, float oy, float oz, float dx, float dy, float dz,
-                           float tmin, float tmax) {
+                               float tmin, float tmax) {
   ray->org[0] = ox;
   ray->org[1] = oy;
   ray->org[2] = oz;
@@ -126,7 +126,7 @@ KD_INLINE int kd_ray_box(const KdRay* ray, const float bmin[3], const float bmax
  * v (of c); the caller decides which t it accepts. Triangles seen edge-on (determinant 0) are
  * missed from both sides. */
 KD_HOT_INLINE int kd_ray_triangle_line(const KdRay* ray, const float a[3], const float b[3], const float c[3],
-                                   float* t_out, float* u_out, float* v_out) {
+                                       float* t_out, float* u_out, float* v_out) {
   const int kx = ray->kx, ky = ray->ky, kz = ray->kz;
   const float A[3] = {a[0] - ray->org[0], a[1] - ray->org[1], a[2] - ray->org[2]};
   const float B[3] = {b[0] - ray->org[0], b[1] - ray->org[1], b[2] - ray->org[2]};

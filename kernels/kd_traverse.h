@@ -119,7 +119,7 @@ KD_INLINE int kd_hit_precedes(float t, kd_u32 triangle, const HitRecord* best) {
 
 /* Tests the leaf's triangles against the ray and `hit`; returns 1 if hit changed. */
 KD_HOT_INLINE int kd_intersect_leaf(const KdSceneView* scene, const KdRay* ray, KdNode leaf, HitRecord* hit,
-                                int any_hit) {
+                                    int any_hit) {
   int found = 0;
   const kd_u32 first = kd_leaf_first(leaf);
   const kd_u32 count = kd_leaf_count(leaf);
@@ -167,8 +167,8 @@ KD_INLINE int kd_segment_may_precede(float t_start, const HitRecord* best) {
  * split plane touches above when its axis is set in plane_sides, below otherwise, as the near
  * child only, and the axis is added to *in_plane_axes. */
 KD_HOT_INLINE int kd_visit_inner(const KdRay* ray, KdNode node, kd_u32 node_index, float t_min, float t_max,
-                             float far_from, int plane_sides, int* in_plane_axes, kd_u32* near_child,
-                             kd_u32* far_child, float* t_split_out) {
+                                 float far_from, int plane_sides, int* in_plane_axes, kd_u32* near_child,
+                                 kd_u32* far_child, float* t_split_out) {
   const kd_u32 axis = kd_node_axis(node);
   const float split = kd_node_split(node);
   const float origin = ray->org[axis];

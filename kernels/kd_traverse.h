@@ -94,6 +94,10 @@ typedef struct KdSceneView {
  * them without fetching their nodes, which for a far child is usually a cache miss. */
 #ifdef KD_EMPTY_LEAF_BITS
 #define KD_IS_EMPTY_LEAF(scene, index) (((scene)->empty_leaves[(index) >> 5] >> ((index) & 31u)) & 1u)
+#elif defined(KD_EMPTY_LEAF_NODES)
+/* Without the bits, the node itself says it (a leaf of no triangles): one load, which for the
+ * near child is the one the descent makes next anyway. */
+#define KD_IS_EMPTY_LEAF(scene, index) ((scene)->nodes[(index)].header == KD_LEAF_TAG)
 #else
 #define KD_IS_EMPTY_LEAF(scene, index) 0
 #endif

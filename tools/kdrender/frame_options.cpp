@@ -50,77 +50,66 @@ void apply_aovs(const FrameOptions& o, kdray::RenderSettings& settings) {
 }  // namespace
 
 void add_frame_options(CLI::App& app, FrameOptions& o) {
-  app.add_option("-o,--output", o.output, "Output image: .exr (linear float), .png or .jpg (sRGB)")->group("Output");
-  app.add_option("--aov", o.aovs, "Extra EXR layers, comma-separated: albedo,normal,depth")->group("Output");
+  // Each block of options is one group of --help; the caller's own options keep its group.
+  CLI::OptionDefaults* defaults = app.option_defaults();
+  const std::string callers_group = defaults->get_group();
+
+  defaults->group("Output");
+  app.add_option("-o,--output", o.output, "Output image: .exr (linear float), .png or .jpg (sRGB)");
+  app.add_option("--aov", o.aovs, "Extra EXR layers, comma-separated: albedo,normal,depth");
 
   auto& s = o.settings;
-  app.add_option("--spp", s.spp, "Samples per pixel to render")
-      ->check(CLI::Range(1u, 1u << 30))
-      ->capture_default_str()
-      ->group("Sampling");
+  defaults->group("Sampling");
+  app.add_option("--spp", s.spp, "Samples per pixel to render")->check(CLI::Range(1u, 1u << 30))->capture_default_str();
   app.add_option("--sample-offset", s.sample_offset, "First sample index (ranges merge exactly)")
-      ->capture_default_str()
-      ->group("Sampling");
-  app.add_option("--seed", s.seed, "Random seed")->capture_default_str()->group("Sampling");
+      ->capture_default_str();
+  app.add_option("--seed", s.seed, "Random seed")->capture_default_str();
   app.add_option("--sampler", o.sampler,
                  "sobol (Owen-scrambled Sobol', stratified) or independent (hashed random numbers)")
       ->check(CLI::IsMember({"sobol", "independent"}))
-      ->capture_default_str()
-      ->group("Sampling");
+      ->capture_default_str();
   app.add_option("--max-bounces", s.max_bounces, "Maximum bounces, as Cycles counts them (0: direct light only)")
       ->check(CLI::Range(0u, kdray::RenderSettings::kMaxBouncesLimit))
-      ->capture_default_str()
-      ->group("Sampling");
+      ->capture_default_str();
   app.add_option("--time-limit", s.time_limit_seconds,
                  "Stop after the last whole sample pass within SECONDS (0: no limit)")
       ->check(CLI::NonNegativeNumber)
-      ->capture_default_str()
-      ->group("Sampling");
+      ->capture_default_str();
 
-  app.add_option("--width", s.width, "Image width in pixels")
-      ->check(CLI::Range(1u, 16384u))
-      ->capture_default_str()
-      ->group("Camera");
-  app.add_option("--height", s.height, "Image height in pixels")
-      ->check(CLI::Range(1u, 16384u))
-      ->capture_default_str()
-      ->group("Camera");
-  app.add_option("--cam-pos", o.cam_pos, "Camera position X,Y,Z (default: the scene's camera)")->group("Camera");
-  app.add_option("--cam-target", o.cam_target, "Point the camera looks at, X,Y,Z")->group("Camera");
-  app.add_option("--cam-up", o.cam_up, "Up direction X,Y,Z (default 0,1,0)")->group("Camera");
-  app.add_option("--fov", o.fov, "Vertical field of view in degrees (default: the scene's camera)")->group("Camera");
+  defaults->group("Camera");
+  app.add_option("--width", s.width, "Image width in pixels")->check(CLI::Range(1u, 16384u))->capture_default_str();
+  app.add_option("--height", s.height, "Image height in pixels")->check(CLI::Range(1u, 16384u))->capture_default_str();
+  app.add_option("--cam-pos", o.cam_pos, "Camera position X,Y,Z (default: the scene's camera)");
+  app.add_option("--cam-target", o.cam_target, "Point the camera looks at, X,Y,Z");
+  app.add_option("--cam-up", o.cam_up, "Up direction X,Y,Z (default 0,1,0)");
+  app.add_option("--fov", o.fov, "Vertical field of view in degrees (default: the scene's camera)");
 
+  defaults->group("Lights");
   app.add_option("--env", o.env_image,
                  "Environment map: an equirectangular (lat-long) HDR image (EXR, HDR, ...), +Y up, "
-                 "mapped as Mitsuba 3's envmap (README.md)")
-      ->group("Lights");
-  app.add_option("--env-color", o.env_color, "A uniform environment of radiance R,G,B instead of a map")
-      ->group("Lights");
+                 "mapped as Mitsuba 3's envmap (README.md)");
+  app.add_option("--env-color", o.env_color, "A uniform environment of radiance R,G,B instead of a map");
   app.add_option("--env-strength", o.env_strength, "Multiplies the environment's radiance")
       ->check(CLI::NonNegativeNumber)
-      ->capture_default_str()
-      ->group("Lights");
+      ->capture_default_str();
   app.add_option("--env-rotate", o.env_rotate,
                  "Turns the environment about +Y by DEGREES, counter-clockwise seen from above")
-      ->capture_default_str()
-      ->group("Lights");
+      ->capture_default_str();
   app.add_flag("--no-default-light", o.no_default_light,
                "Render a scene without any light black instead of under the default light (a uniform white "
-               "environment of radiance 1)")
-      ->group("Lights");
-  app.add_flag("--no-mis", o.no_mis, "Test switch: light samples at full weight, no multiple importance sampling")
-      ->group("Lights");
+               "environment of radiance 1)");
+  app.add_flag("--no-mis", o.no_mis, "Test switch: light samples at full weight, no multiple importance sampling");
 
   kdray::tool::add_device_option(app, o.device.device, false);
+  defaults->group("Device");
   app.add_option("--local-size", o.device.local_size, "OpenCL work-group size (0: device default, 64 on CPUs)")
-      ->capture_default_str()
-      ->group("Device");
+      ->capture_default_str();
   app.add_option("--stack-size", o.device.short_stack_size,
                  "Debug: traversal short-stack entries (KD_SHORT_STACK_SIZE; 0: kernel default 8)")
-      ->capture_default_str()
-      ->group("Device");
-  app.add_flag("--wavefront", o.wavefront, "Use the wavefront kernels instead of the (faster) megakernel")
-      ->group("Device");
+      ->capture_default_str();
+  app.add_flag("--wavefront", o.wavefront, "Use the wavefront kernels instead of the (faster) megakernel");
+
+  defaults->group(callers_group);
 }
 
 std::shared_ptr<const kdray::Environment> EnvironmentCache::get(const FrameOptions& o, double* load_seconds) {

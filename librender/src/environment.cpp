@@ -1,8 +1,6 @@
-// Environment maps: loading through OpenImageIO and the sampling table (see environment.h).
+// Environment maps: uniform ones and the sampling table (see environment.h); maps from image
+// files are read in environment_image.cpp.
 #include <kdray/environment.h>
-#include <kdray/error.h>
-
-#include <OpenImageIO/imageio.h>
 
 #include <cmath>
 #include <memory>
@@ -11,43 +9,11 @@ namespace kdray {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// Large enough for 16k x 8k maps, small enough that a hostile header cannot ask for 100 GB.
-constexpr uint64_t kMaxEnvironmentPixels = uint64_t(1) << 28;
 
 // Matches pt_luminance in kernels/pt_sampling.h.
 double luminance(const float* rgb) { return (double(rgb[0]) + rgb[1] + rgb[2]) / 3.0; }
 
 }  // namespace
-
-Environment load_environment(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw Error(path, "cannot read the environment image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1) {
-    throw Error(path, "not a 2D image");
-  }
-  const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
-  if (pixels > kMaxEnvironmentPixels) {
-    throw Error(path, "environment image of " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                          " pixels is too large");
-  }
-  Environment env;
-  env.source = path;
-  env.width = uint32_t(spec.width);
-  env.height = uint32_t(spec.height);
-  // Read straight into place: a 4k x 2k map is 100 MB of floats, so no extra copies.
-  const int channels = spec.nchannels >= 3 ? 3 : 1;
-  env.rgb.resize(pixels * 3);
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, env.rgb.data())) {
-    throw Error(path, "cannot read the environment image: " + in->geterror());
-  }
-  in->close();
-  if (channels == 1) {
-    for (uint64_t i = pixels; i-- > 0;) env.rgb[3 * i] = env.rgb[3 * i + 1] = env.rgb[3 * i + 2] = env.rgb[i];
-  }
-  for (float& value : env.rgb) value = std::isfinite(value) && value > 0 ? value : 0.0f;  // finite, >= 0
-  return env;
-}
 
 Environment uniform_environment(const Vec3& color) {
   // A small grid rather than one pixel, so that the sampling table still follows sin(theta).

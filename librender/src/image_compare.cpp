@@ -1,9 +1,9 @@
+#include "image_codec_loader.h"
+
 #include <kdray/atomic_file.h>
 #include <kdray/error.h>
 #include <kdray/image_compare.h>
 #include <kdray/util.h>
-
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <array>
@@ -15,13 +15,13 @@
 namespace kdray {
 namespace {
 
-// 8-bit formats get 8-bit pixels (OIIO rounds and clamps); everything else keeps float.
-OIIO::TypeDesc storage_type_for(const std::string& path) {
+// 8-bit formats get 8-bit pixels (OpenImageIO rounds and clamps); everything else keeps float.
+PixelType storage_type_for(const std::string& path) {
   const std::string extension = lowercase_extension(path);
   if (extension == ".png" || extension == ".jpg" || extension == ".jpeg" || extension == ".bmp") {
-    return OIIO::TypeDesc::UINT8;
+    return PixelType::UInt8;
   }
-  return OIIO::TypeDesc::FLOAT;
+  return PixelType::Float;
 }
 
 std::vector<size_t> channel_indices(const FloatImage& image, const std::vector<std::string>& names,
@@ -138,28 +138,21 @@ std::array<float, 3> heat_colour(double fraction) {
 }  // namespace
 
 FloatImage read_float_image(const std::string& path) {
-  auto input = OIIO::ImageInput::open(path);
-  if (!input) {
-    std::string why = OIIO::geterror();
-    if (why.empty()) why = "cannot open";
-    throw Error(path, "cannot read image: " + why);
-  }
-  const OIIO::ImageSpec& spec = input->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1) {
+  std::string why;
+  std::unique_ptr<ImageReader> input = image_codec(path).open(path, "", why);
+  if (!input) throw Error(path, "cannot read image: " + (why.empty() ? std::string("cannot open") : why));
+  const ImageHeader& header = input->header();
+  if (header.width <= 0 || header.height <= 0 || header.channel_names.empty() || header.depth > 1) {
     throw Error(path, "not a 2D image with pixels");
   }
   FloatImage image;
-  image.width = spec.width;
-  image.height = spec.height;
-  image.channel_names.resize(size_t(spec.nchannels));
-  for (int c = 0; c < spec.nchannels; ++c) {
-    image.channel_names[size_t(c)] =
-        c < int(spec.channelnames.size()) ? spec.channelnames[size_t(c)] : "channel" + std::to_string(c);
-  }
-  image.alpha_channel = spec.alpha_channel;
+  image.width = header.width;
+  image.height = header.height;
+  image.channel_names = header.channel_names;
+  image.alpha_channel = header.alpha_channel;
   image.pixels.resize(image.pixel_count() * image.channel_count());
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
-    throw Error(path, "cannot read pixels: " + input->geterror());
+  if (!input->read(0, int(image.channel_count()), PixelType::Float, image.pixels.data())) {
+    throw Error(path, "cannot read pixels: " + input->problem());
   }
   return image;
 }
@@ -168,17 +161,17 @@ void write_float_image_atomic(const std::string& path, const FloatImage& image) 
   if (image.pixels.size() != image.pixel_count() * image.channel_count() || image.channel_count() == 0) {
     throw Error(path, "internal: image buffer does not match its size");
   }
-  // Created from the target's name: the temporary file's extension is the same, but being
-  // explicit keeps the format choice in one place.
-  auto output = OIIO::ImageOutput::create(path);
-  if (!output) throw Error(path, "cannot write this image format: " + OIIO::geterror());
-  OIIO::ImageSpec spec(image.width, image.height, int(image.channel_count()), storage_type_for(path));
-  spec.channelnames = image.channel_names;
-  spec.alpha_channel = image.alpha_channel;
-  AtomicFile file(path);
-  const bool written = output->open(file.temporary_path(), spec) &&
-                       output->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) && output->close();
-  if (!written) throw Error(path, "cannot write image: " + output->geterror());
+  ImageHeader header;
+  header.width = image.width;
+  header.height = image.height;
+  header.channel_names = image.channel_names;
+  header.channel_types.assign(image.channel_count(), storage_type_for(path));
+  header.alpha_channel = image.alpha_channel;
+  const ImageCodec& codec = image_codec(path);
+  AtomicFile file(path);  // the temporary file keeps the extension, which names the format
+  std::string problem;
+  if (!codec.write(file.temporary_path(), header, PixelType::Float, image.pixels.data(), problem))
+    throw Error(path, problem);
   file.commit();
 }
 

@@ -1,10 +1,10 @@
-// Film images through OpenImageIO (see image_io.h).
+// Film images through the image codec module (see image_io.h).
+#include "image_codec_loader.h"
+
 #include <kdray/atomic_file.h>
 #include <kdray/error.h>
 #include <kdray/image_io.h>
 #include <kdray/util.h>
-
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,47 +25,43 @@ const char* const kChannelOrder[] = {"R", "G", "B", "albedo.R", "albedo.G", "alb
 
 uint8_t srgb_byte(float linear) { return static_cast<uint8_t>(std::lround(linear_to_srgb(linear) * 255.0f)); }
 
-// Writes through a temporary sibling that keeps the extension, so OIIO picks the format.
-void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, const void* pixels) {
+// Writes each channel in its stored type through a temporary sibling that keeps the extension,
+// which names the format.
+void write_atomically(const std::string& path, const ImageHeader& header, const void* pixels) {
+  const ImageCodec& codec = image_codec(path);
   AtomicFile file(path);
-  auto out = OIIO::ImageOutput::create(file.temporary_path());
-  if (!out) throw Error(path, "cannot write this image format: " + OIIO::geterror());
-  bool ok = out->open(file.temporary_path(), spec) && out->write_image(OIIO::TypeDesc::UNKNOWN, pixels);
-  std::string problem = ok ? std::string() : out->geterror();
-  ok = out->close() && ok;
-  if (!ok) throw Error(path, "cannot write image: " + (problem.empty() ? std::string("I/O error") : problem));
+  std::string problem;
+  if (!codec.write(file.temporary_path(), header, std::nullopt, pixels, problem)) throw Error(path, problem);
   file.commit();
 }
 
 void write_exr(const std::string& path, const Film& film) {
   const size_t stride = film.channels.size();
   const size_t total_channels = stride * 3;  // mean, sum hi, sum lo
-  OIIO::ImageSpec spec(int(film.width), int(film.height), int(total_channels), OIIO::TypeDesc::FLOAT);
-  spec.channelnames.clear();
-  spec.channelformats.clear();
+  ImageHeader header;
+  header.width = int(film.width);
+  header.height = int(film.height);
   for (const std::string& name : film.channels) {
-    spec.channelnames.push_back(name);
-    spec.channelformats.push_back(OIIO::TypeDesc::FLOAT);
+    header.channel_names.push_back(name);
+    header.channel_types.push_back(PixelType::Float);
   }
   for (const std::string& name : film.channels) {
     for (const char* half : {".hi", ".lo"}) {
-      spec.channelnames.push_back(kSumPrefix + name + half);
-      spec.channelformats.push_back(OIIO::TypeDesc::UINT);
+      header.channel_names.push_back(kSumPrefix + name + half);
+      header.channel_types.push_back(PixelType::UInt32);
     }
   }
-  spec.alpha_channel = -1;
-  spec.z_channel = -1;
-  spec.attribute("compression", "zip");
-  spec.attribute("kdray:spp", film.sample_count);
-  spec.attribute("kdray:sample_offset", film.sample_offset);
-  spec.attribute("kdray:seed", film.seed);
-  spec.attribute("kdray:max_bounces", film.max_bounces);
-  spec.attribute("kdray:sampler", sampler_name(film.sampler));
-  spec.attribute("kdray:seconds", float(film.render_seconds));
-  spec.attribute("kdray:scene_hash", hash_hex(film.scene_hash));
-  spec.attribute("kdray:tree_hash", hash_hex(film.tree_hash));
-  spec.attribute("kdray:settings_hash", hash_hex(film.settings_hash));
-  spec.attribute("kdray:fixed_bits", kFilmFixedBits);
+  header.attributes = {{"compression", std::string("zip")},
+                       {"kdray:spp", film.sample_count},
+                       {"kdray:sample_offset", film.sample_offset},
+                       {"kdray:seed", film.seed},
+                       {"kdray:max_bounces", film.max_bounces},
+                       {"kdray:sampler", std::string(sampler_name(film.sampler))},
+                       {"kdray:seconds", float(film.render_seconds)},
+                       {"kdray:scene_hash", hash_hex(film.scene_hash)},
+                       {"kdray:tree_hash", hash_hex(film.tree_hash)},
+                       {"kdray:settings_hash", hash_hex(film.settings_hash)},
+                       {"kdray:fixed_bits", int32_t(kFilmFixedBits)}};
 
   std::vector<float> means = film.means();
   std::vector<uint32_t> pixels(film.pixel_count() * total_channels);  // every channel is 4 bytes
@@ -78,7 +74,7 @@ void write_exr(const std::string& path, const Film& film) {
       out[stride + 2 * c + 1] = static_cast<uint32_t>(bits);
     }
   }
-  write_atomically(path, spec, pixels.data());
+  write_atomically(path, header, pixels.data());
 }
 
 void write_ldr(const std::string& path, const Film& film) {
@@ -88,10 +84,36 @@ void write_ldr(const std::string& path, const Film& film) {
   for (size_t p = 0; p < film.pixel_count(); ++p) {
     for (size_t c = 0; c < 3; ++c) pixels[p * 3 + c] = srgb_byte(means[p * stride + c]);
   }
-  OIIO::ImageSpec spec(int(film.width), int(film.height), 3, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:ColorSpace", "sRGB");
-  spec.attribute("Software", "kdray kdrender");
-  write_atomically(path, spec, pixels.data());
+  ImageHeader header;
+  header.width = int(film.width);
+  header.height = int(film.height);
+  header.channel_names = {"R", "G", "B"};
+  header.channel_types.assign(3, PixelType::UInt8);
+  header.attributes = {{"oiio:ColorSpace", std::string("sRGB")}, {"Software", std::string("kdray kdrender")}};
+  write_atomically(path, header, pixels.data());
+}
+
+// A metadata value, the fallback when it is absent or of another kind: integers are read from the
+// integer types only, numbers from those and float.
+int64_t integer_attribute(const ImageHeader& header, const char* name, int64_t fallback) {
+  const auto found = header.attributes.find(name);
+  if (found == header.attributes.end()) return fallback;
+  if (const int32_t* value = std::get_if<int32_t>(&found->second)) return *value;
+  if (const uint32_t* value = std::get_if<uint32_t>(&found->second)) return *value;
+  return fallback;
+}
+
+double number_attribute(const ImageHeader& header, const char* name, double fallback) {
+  const auto found = header.attributes.find(name);
+  if (found == header.attributes.end()) return fallback;
+  if (const float* value = std::get_if<float>(&found->second)) return *value;
+  return double(integer_attribute(header, name, 0));
+}
+
+std::string text_attribute(const ImageHeader& header, const char* name, const std::string& fallback) {
+  const auto found = header.attributes.find(name);
+  const std::string* value = found == header.attributes.end() ? nullptr : std::get_if<std::string>(&found->second);
+  return value ? *value : fallback;
 }
 
 uint64_t parse_hex(const std::string& path, const std::string& text) {
@@ -217,12 +239,10 @@ void check_exr_claims(const std::string& path) {
 }  // namespace
 
 std::optional<std::pair<uint32_t, uint32_t>> read_image_size(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    OIIO::geterror();  // clears the message this failure left
-    return std::nullopt;
-  }
-  return std::make_pair(uint32_t(in->spec().width), uint32_t(in->spec().height));
+  std::string problem;
+  std::unique_ptr<ImageReader> in = image_codec(path).open(path, "", problem);
+  if (!in) return std::nullopt;
+  return std::make_pair(uint32_t(in->header().width), uint32_t(in->header().height));
 }
 
 bool is_supported_image_path(const std::string& path) {
@@ -242,25 +262,22 @@ Film read_film_exr(const std::string& path) {
   if (!fs::is_regular_file(path, error))
     throw Error(path, fs::exists(path, error) ? "not a regular file" : "no such file");
   check_exr_claims(path);
-  // By the EXR reader alone: ImageInput::open would try every other format's reader on a file
-  // OpenEXR refused, and some of them (DICOM) load hundreds of megabytes of tables to look.
-  auto in = OIIO::ImageInput::create("exr");
-  OIIO::ImageSpec opened;
-  if (!in || !in->open(path, opened))
-    throw Error(path, "cannot read image: " + (in ? in->geterror() : OIIO::geterror()));
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.deep || spec.x != 0 || spec.y != 0 || spec.z != 0 || spec.depth != 1)
+  std::string problem;
+  std::unique_ptr<ImageReader> in = image_codec(path).open(path, "exr", problem);
+  if (!in) throw Error(path, "cannot read image: " + problem);
+  const ImageHeader& header = in->header();
+  if (header.deep || !header.at_origin || header.depth != 1)
     throw Error(path, "not a kdrender EXR: a deep image, or its data window does not start at the origin");
   Film film;
-  film.width = uint32_t(spec.width);
-  film.height = uint32_t(spec.height);
+  film.width = uint32_t(header.width);
+  film.height = uint32_t(header.height);
+  const std::vector<std::string>& names = header.channel_names;
   auto channel_index = [&](const std::string& name) {
-    auto found = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
-    return found == spec.channelnames.end() ? -1 : int(found - spec.channelnames.begin());
+    auto found = std::find(names.begin(), names.end(), name);
+    return found == names.end() ? -1 : int(found - names.begin());
   };
   std::vector<int> hi_index, lo_index;
-  for (int c = 0; c < spec.nchannels; ++c) {
-    const std::string& name = spec.channelnames[size_t(c)];
+  for (const std::string& name : names) {
     if (name.rfind(kSumPrefix, 0) == 0) continue;
     if (std::find(std::begin(kChannelOrder), std::end(kChannelOrder), name) == std::end(kChannelOrder)) {
       throw Error(path, "not a kdrender EXR: unexpected channel " + name);
@@ -280,24 +297,24 @@ Film read_film_exr(const std::string& path) {
   if (film.channels.empty()) throw Error(path, "not a kdrender EXR: no image channels");
   for (const char* key : {"kdray:spp", "kdray:sample_offset", "kdray:seed", "kdray:max_bounces", "kdray:scene_hash",
                           "kdray:tree_hash"}) {
-    if (!spec.find_attribute(key)) throw Error(path, std::string("not a kdrender EXR: no ") + key + " metadata");
+    if (!header.attributes.count(key)) throw Error(path, std::string("not a kdrender EXR: no ") + key + " metadata");
   }
-  if (spec.get_int_attribute("kdray:fixed_bits", kFilmFixedBits) != kFilmFixedBits) {
+  if (integer_attribute(header, "kdray:fixed_bits", kFilmFixedBits) != kFilmFixedBits) {
     throw Error(path, "written with another fixed-point precision; cannot merge");
   }
-  film.sample_count = uint32_t(spec.get_int_attribute("kdray:spp"));
-  film.sample_offset = uint32_t(spec.get_int_attribute("kdray:sample_offset"));
-  film.seed = uint32_t(spec.get_int_attribute("kdray:seed"));
-  film.max_bounces = uint32_t(spec.get_int_attribute("kdray:max_bounces"));
+  film.sample_count = uint32_t(integer_attribute(header, "kdray:spp", 0));
+  film.sample_offset = uint32_t(integer_attribute(header, "kdray:sample_offset", 0));
+  film.seed = uint32_t(integer_attribute(header, "kdray:seed", 0));
+  film.max_bounces = uint32_t(integer_attribute(header, "kdray:max_bounces", 0));
   // Files written before the sampler choice used independent numbers.
-  const std::string sampler_text = spec.get_string_attribute("kdray:sampler", "independent");
+  const std::string sampler_text = text_attribute(header, "kdray:sampler", "independent");
   std::optional<Sampler> sampler = parse_sampler(sampler_text);
   if (!sampler) throw Error(path, "unknown kdray:sampler '" + sampler_text + "'");
   film.sampler = *sampler;
-  film.render_seconds = spec.get_float_attribute("kdray:seconds");
-  film.scene_hash = parse_hex(path, spec.get_string_attribute("kdray:scene_hash"));
-  film.tree_hash = parse_hex(path, spec.get_string_attribute("kdray:tree_hash"));
-  const std::string settings_hash = spec.get_string_attribute("kdray:settings_hash");  // absent in older images
+  film.render_seconds = number_attribute(header, "kdray:seconds", 0);
+  film.scene_hash = parse_hex(path, text_attribute(header, "kdray:scene_hash", ""));
+  film.tree_hash = parse_hex(path, text_attribute(header, "kdray:tree_hash", ""));
+  const std::string settings_hash = text_attribute(header, "kdray:settings_hash", "");  // absent in older images
   film.settings_hash = settings_hash.empty() ? 0 : parse_hex(path, settings_hash);
 
   std::vector<uint32_t> sum_channel(film.pixel_count());
@@ -305,8 +322,8 @@ Film read_film_exr(const std::string& path) {
   for (size_t c = 0; c < film.channels.size(); ++c) {
     for (int part = 0; part < 2; ++part) {
       int index = part == 0 ? hi_index[c] : lo_index[c];
-      if (!in->read_image(0, 0, index, index + 1, OIIO::TypeDesc::UINT, sum_channel.data())) {
-        throw Error(path, "cannot read image: " + in->geterror());
+      if (!in->read(index, index + 1, PixelType::UInt32, sum_channel.data())) {
+        throw Error(path, "cannot read image: " + in->problem());
       }
       for (size_t p = 0; p < film.pixel_count(); ++p) {
         uint64_t bits = static_cast<uint64_t>(film.sums[p * film.channels.size() + c]);

@@ -2,12 +2,7 @@
 
 #include "../texture_codec/texture_codec.h"
 
-#include <dlfcn.h>
-
-#include <cstdlib>
-#include <filesystem>
-#include <mutex>
-#include <system_error>
+#include <kdray/module.h>
 
 namespace kdray {
 namespace {
@@ -17,45 +12,21 @@ struct LoadedCodec {
   std::string problem;  // why it could not be loaded
 };
 
-constexpr const char* kModuleName = "kdray_texture_codec.so";
-
-// The module lives in lib/kdray/ beside the folder of the executables: one level up when
-// installed (PREFIX/bin/kdconvert, PREFIX/lib/kdray/), two in the build tree
-// (build/tools/kdconvert/kdconvert, build/lib/kdray/), so a relocated or installed copy works.
-// KDRAY_TEXTURE_CODEC names another module file.
-std::string module_path() {
-  if (const char* override_path = std::getenv("KDRAY_TEXTURE_CODEC")) return override_path;
-  std::error_code error;
-  const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
-  if (!error) {
-    for (const char* up : {"..", "../.."}) {
-      const std::filesystem::path candidate = executable.parent_path() / up / "lib" / "kdray" / kModuleName;
-      if (std::filesystem::exists(candidate, error)) return candidate.lexically_normal().string();
-    }
-  }
-  return kModuleName;  // leaves the search to dlopen (LD_LIBRARY_PATH), whose error names the file
-}
-
-// Loaded once and kept for the life of the process.
+// Loaded once and kept for the life of the process (kdray/module.h); KDRAY_TEXTURE_CODEC names
+// another module file.
 const LoadedCodec& loaded_codec() {
-  static LoadedCodec loaded;
-  static std::once_flag once;
-  std::call_once(once, [] {
-    const std::string module_file = module_path();
-    const char* path = module_file.c_str();
-    void* module = ::dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    if (module == nullptr) {
-      loaded.problem = std::string("texture decoding is unavailable: ") + ::dlerror();
-      return;
-    }
+  static const LoadedCodec loaded = [] {
+    LoadedCodec codec;
+    std::string problem;
     using Entry = const TextureCodec* (*)();
-    auto entry = reinterpret_cast<Entry>(::dlsym(module, "kdray_texture_codec"));
-    if (entry == nullptr) {
-      loaded.problem = std::string("texture decoding is unavailable: ") + path + " has no kdray_texture_codec";
-      return;
-    }
-    loaded.codec = entry();
-  });
+    auto entry = reinterpret_cast<Entry>(
+        load_module_symbol("kdray_texture_codec.so", "KDRAY_TEXTURE_CODEC", "kdray_texture_codec", problem));
+    if (entry == nullptr)
+      codec.problem = "texture decoding is unavailable: " + problem;
+    else
+      codec.codec = entry();
+    return codec;
+  }();
   return loaded;
 }
 

@@ -108,6 +108,18 @@ TEST_F(KdrenderCli, ListsDevices) {
   EXPECT_EQ(kdrender(cornell(path("host.png"), "--device host")).exit_code, 2);  // kdrender runs on OpenCL only
 }
 
+TEST_F(KdrenderCli, WithoutTheImageModuleFailsNamingTheOutputAndWritesNothing) {
+  const std::string output = path("no-module.png");
+  test::ToolRun run = test::run_command("KDRAY_IMAGE_CODEC=" + test::shell_quoted(path("missing.so")) + " " +
+                                        test::shell_quoted(test::tool_path("kdrender")) + " " +
+                                        cornell(output, "--spp 2 -q") + " 2>&1");
+  EXPECT_EQ(run.exit_code, 1) << run.out;
+  EXPECT_NE(run.out.find("kdrender: error: " + output + ": image files cannot be read or written"), std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("missing.so"), std::string::npos) << run.out;
+  EXPECT_FALSE(fs::exists(output));
+}
+
 TEST_F(KdrenderCli, WithoutAnOpenClPlatformSaysHowToInstallPocl) {
   // An empty vendor directory hides every ICD from the loader.
   test::ToolRun run = test::run_command("OCL_ICD_VENDORS=" + test::shell_quoted(path("no-vendors")) +

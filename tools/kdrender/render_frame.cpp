@@ -18,7 +18,13 @@ double rate(double count, double seconds) { return seconds > 0 ? count / seconds
 FrameResult render_frame(const kdray::Scene& scene, const kdray::KdTree& tree, const Frame& frame,
                          const kdray::RenderProgress& progress) {
   FrameResult result;
-  result.film = kdray::render(scene, tree, frame.settings, frame.device, &result.stats, progress);
+  // The image writer's libraries load while the device renders, from the first finished pass on:
+  // PoCL has loaded its kernel library by then, so neither load waits for the other.
+  auto progress_then_preload = [&progress](uint32_t done, uint32_t total) {
+    kdray::preload_image_io();
+    if (progress) progress(done, total);
+  };
+  result.film = kdray::render(scene, tree, frame.settings, frame.device, &result.stats, progress_then_preload);
   auto write_start = std::chrono::steady_clock::now();
   kdray::write_film_image(frame.output, result.film);
   result.write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();

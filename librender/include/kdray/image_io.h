@@ -27,4 +27,10 @@ std::optional<std::pair<uint32_t, uint32_t>> read_image_size(const std::string& 
 // True when write_film_image knows the extension of path.
 bool is_supported_image_path(const std::string& path);
 
+// Images are read and written by a module loaded on first use (OpenImageIO: some 250 shared
+// libraries, about 0.2 s to load). This starts loading it on a thread of its own, so that a
+// program can have it ready by the time it writes. Not while another thread loads libraries:
+// glibc runs one dlopen at a time, so that one would wait.
+void preload_image_io();
+
 }  // namespace kdray

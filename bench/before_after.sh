@@ -19,6 +19,8 @@ for build in "$BEFORE" "$BUILD"; do  # warm each build's program cache
   "$build/tools/kdrender/kdrender" "$WORK/cornell.kdscene" "$WORK/cornell.kdtree" -o "$WORK/warm.exr" $VIEW \
     --width 8 --height 8 --spp 1 -q
 done
+: > "$WORK/before.walls"
+: > "$WORK/after.walls"
 for run in $(seq "$RUNS"); do
   for side in before after; do
     build=$BEFORE && [ "$side" = after ] && build=$BUILD

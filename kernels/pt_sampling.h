@@ -59,20 +59,28 @@ inline float pt_power_heuristic(float pdf_a, float pdf_b) {
 }
 
 /* A secondary-ray origin that cannot re-hit the surface it leaves: p moved along the geometric
- * normal n (facing the side the ray leaves to) by a few ULPs of p's own magnitude, or by a fixed
- * tiny distance near the origin (Wachter & Binder 2019, Ray Tracing Gems ch. 6). */
+ * normal n (facing the side the ray leaves to) by a few ULPs of each coordinate's own magnitude, or
+ * by a fixed tiny distance near 0 (Wachter & Binder 2019, Ray Tracing Gems ch. 6), and then by
+ * 2^-19 of p's largest coordinate. The ray/triangle test takes the vertices relative to the ray's
+ * origin, so the rounding error of its t grows with the distances in the scene, not with the
+ * coordinate a surface lies at: from a wall in the plane x = 0, moved 1.5e-5 off it, shadow rays
+ * of the Cornell box met the wall again at t = +3e-8 (0.4% of them, in the trees whose leaf held
+ * the wall and the origin together, so the image depended on the tree). */
 inline float3 pt_offset_origin(float3 p, float3 n) {
   const float origin = 1.0f / 32.0f;
   const float float_scale = 1.0f / 65536.0f;
   const float int_scale = 256.0f;
+  const float scene_scale = 0x1p-19f;
   /* integer steps of the bit patterns (as unsigned, which wraps like the signed sum would) */
   kd_i32 ox = (kd_i32)(int_scale * n.x), oy = (kd_i32)(int_scale * n.y), oz = (kd_i32)(int_scale * n.z);
   float3 p_int = KD_FLOAT3(kd_as_float(kd_as_uint(p.x) + (kd_u32)(p.x < 0 ? -ox : ox)),
                            kd_as_float(kd_as_uint(p.y) + (kd_u32)(p.y < 0 ? -oy : oy)),
                            kd_as_float(kd_as_uint(p.z) + (kd_u32)(p.z < 0 ? -oz : oz)));
-  return KD_FLOAT3(fabs(p.x) < origin ? p.x + float_scale * n.x : p_int.x,
-                  fabs(p.y) < origin ? p.y + float_scale * n.y : p_int.y,
-                  fabs(p.z) < origin ? p.z + float_scale * n.z : p_int.z);
+  float3 moved = KD_FLOAT3(fabs(p.x) < origin ? p.x + float_scale * n.x : p_int.x,
+                           fabs(p.y) < origin ? p.y + float_scale * n.y : p_int.y,
+                           fabs(p.z) < origin ? p.z + float_scale * n.z : p_int.z);
+  float largest = fmax(fmax(fabs(p.x), fabs(p.y)), fabs(p.z));
+  return moved + (scene_scale * largest) * n;
 }
 
 #endif /* PT_SAMPLING_H */

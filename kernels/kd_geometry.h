@@ -31,18 +31,17 @@
 #define KD_TINY_DIRECTION 1e-30f
 #define KD_HUGE_RECIPROCAL 1e30f
 
+/* Minimum and maximum as plain comparisons, not fmin/fmax: traversal never passes NaN here
+ * (kd_ray_setup rejects non-finite rays and reciprocals stay finite), and fmin's NaN rule costs
+ * a compare and a blend per call on CPUs (OpenCL) or a library call (C++ without -ffast-math). */
+KD_INLINE float kd_minf(float a, float b) { return b < a ? b : a; }
+KD_INLINE float kd_maxf(float a, float b) { return a < b ? b : a; }
 #ifdef __OPENCL_VERSION__
 KD_INLINE float kd_absf(float x) { return fabs(x); }
-KD_INLINE float kd_minf(float a, float b) { return fmin(a, b); }
-KD_INLINE float kd_maxf(float a, float b) { return fmax(a, b); }
 KD_INLINE float kd_copysignf(float magnitude, float sign) { return copysign(magnitude, sign); }
 KD_INLINE int kd_isfinitef(float x) { return isfinite(x); }
 #else
 KD_INLINE float kd_absf(float x) { return std::fabs(x); }
-/* Plain comparisons, not std::fmin/fmax: those are library calls without -ffast-math, and
- * traversal never passes NaN here (kd_ray_setup rejects non-finite rays). */
-KD_INLINE float kd_minf(float a, float b) { return b < a ? b : a; }
-KD_INLINE float kd_maxf(float a, float b) { return a < b ? b : a; }
 KD_INLINE float kd_copysignf(float magnitude, float sign) { return std::copysign(magnitude, sign); }
 KD_INLINE int kd_isfinitef(float x) { return std::isfinite(x) ? 1 : 0; }
 #endif

@@ -362,12 +362,15 @@ KD_INLINE HitRecord kd_traverse(const KdSceneView* scene, RayRecord record, int 
   float scene_t_max = record.tmax;
   if (!kd_ray_box(&ray, scene->bounds_min, scene->bounds_max, &scene_t_min, &scene_t_max)) return best;
   best.t = record.tmax;
+  /* Side choices in increasing order, each a subset of the axes met so far (which passes may
+   * add to): the next one after s is ((s | ~met) + 1) & met, and 0 once all are done. */
   int in_plane_axes = 0;
-  for (int plane_sides = 0; plane_sides < 8; ++plane_sides) {
-    if (plane_sides & ~in_plane_axes) continue; /* a side choice on an axis never met */
+  int plane_sides = 0;
+  do {
     if (kd_traverse_pass(scene, &ray, scene_t_min, scene_t_max, plane_sides, &in_plane_axes, &best, any_hit))
       break;
-  }
+    plane_sides = ((plane_sides | ~in_plane_axes) + 1) & in_plane_axes;
+  } while (plane_sides != 0);
   if (best.triangle == KD_NO_HIT) best.t = INFINITY;
   return best;
 }

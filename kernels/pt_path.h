@@ -182,11 +182,11 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, KD_GLOBAL cons
   float twice_area = kd_length(scaled_normal);
   float3 light_normal = scaled_normal / twice_area;
   float3 a, b, c;
-  float solid_angle = pt_triangle_solid_angle(p, q0, q1, q2, &a, &b, &c);
+  float solid_angle = pt_spherical_solid_angle(p, q0, q1, q2, &a, &b, &c);
   float3 wi;
   float dist2;
   float2 bary = KD_FLOAT2(0.0f, 0.0f); /* of the point on the light, for textured emission */
-  if (pt_use_spherical_sampling(solid_angle)) {
+  if (solid_angle > 0.0f) {
     wi = pt_sample_spherical_triangle(a, b, c, solid_angle, u, pick_v.y);
     float t = kd_dot(q0 - p, light_normal) / kd_dot(wi, light_normal);
     if (!(t > 0.0f && t < INFINITY)) return;
@@ -347,7 +347,7 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, KD_GLOBAL cons
       /* the density next-event estimation gives this direction, measured from the ray's origin
        * (the previous shading point, moved off its surface by a few ulps) */
       float3 a, b, c;
-      float solid_angle = pt_triangle_solid_angle(path->origin, p0, p1, p2, &a, &b, &c);
+      float solid_angle = pt_spherical_solid_angle(path->origin, p0, p1, p2, &a, &b, &c);
       float pick_per_area = PT_SELECT_TRIANGLES(params) * pt_luminance(emission) * params->light_area_pdf_scale;
       float light_pdf = pt_triangle_light_pdf(pick_per_area, 0.5f * kd_length(kd_cross(p1 - p0, p2 - p0)), solid_angle,
                                               hit.t * hit.t, kd_dot(ng, wo));

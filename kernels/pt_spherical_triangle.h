@@ -1,9 +1,9 @@
 /* Triangle emitters seen from a shading point: the solid angle they subtend and uniform
  * sampling of directions inside it (spherical triangles, Arvo 1995, "Stratified Sampling of
  * Spherical Triangles"). Next-event estimation samples a triangle by solid angle where it
- * subtends a mid-sized solid angle, and by area where it is tiny (float cancellation makes the
- * spherical construction unreliable, and area sampling is as good there) or covers nearly the
- * whole hemisphere, as pbrt-v4 decides. A BSDF-sampled ray that hits the triangle makes the same
+ * subtends a large solid angle, and by area where it is small (area sampling is nearly as good
+ * there, and cheaper) or covers nearly the whole hemisphere (as pbrt-v4 decides: the spherical
+ * construction loses precision there). A BSDF-sampled ray that hits the triangle makes the same
  * decision from its origin (the shading point moved off the surface by a few ulps), so both
  * strategies' MIS weights use the same light density.
  */
@@ -12,8 +12,14 @@
 
 #include "kd_math.h"
 
-/* Solid angles (sr) outside which a triangle light is sampled by area (pbrt-v4's thresholds). */
-#define PT_MIN_SPHERICAL_SOLID_ANGLE 3e-4f
+/* Solid angles (sr) outside which a triangle light is sampled by area. Above the upper bound
+ * (pbrt-v4's) the spherical construction loses precision. Below the lower one, area sampling's
+ * density, d^2 / (A cos), varies across the triangle by a few per cent at most, so it is nearly
+ * as good and costs less than the solid angle's arctangent and the spherical construction. The
+ * lower bound was chosen by error x cost on the Cornell box (BENCHMARKS.md, "Light sampling
+ * cost"): 0.05 sr gave 7% fewer kernel instructions for 1.3% more error than pbrt-v4's 3e-4. */
+#define PT_MIN_SPHERICAL_SOLID_ANGLE 0.05f
+#define PT_TAN_HALF_MIN_SPHERICAL 0.0250052096f /* tan(PT_MIN_SPHERICAL_SOLID_ANGLE / 2) */
 #define PT_MAX_SPHERICAL_SOLID_ANGLE 6.22f
 
 /* Solid angle of the triangle with unit corner directions a, b, c (Van Oosterom & Strackee
@@ -23,29 +29,37 @@ KD_INLINE float pt_solid_angle_of(float3 a, float3 b, float3 c) {
   return 2.0f * kd_atan2(volume, 1.0f + kd_dot(a, b) + kd_dot(b, c) + kd_dot(c, a));
 }
 
-/* Solid angle that triangle q0 q1 q2 subtends at p, and the unit directions from p to its
- * corners; 0 when p lies on a corner. */
-KD_INLINE float pt_triangle_solid_angle(float3 p, float3 q0, float3 q1, float3 q2, float3* a, float3* b, float3* c) {
-  float3 d0 = q0 - p, d1 = q1 - p, d2 = q2 - p;
-  float l0 = kd_length(d0), l1 = kd_length(d1), l2 = kd_length(d2);
-  if (!(l0 > 0.0f && l1 > 0.0f && l2 > 0.0f)) return 0.0f;
-  *a = d0 / l0;
-  *b = d1 / l1;
-  *c = d2 / l2;
-  return pt_solid_angle_of(*a, *b, *c);
-}
-
 /* Whether a triangle of this solid angle is sampled by solid angle (else by area). */
 KD_INLINE int pt_use_spherical_sampling(float solid_angle) {
   return solid_angle >= PT_MIN_SPHERICAL_SOLID_ANGLE && solid_angle <= PT_MAX_SPHERICAL_SOLID_ANGLE;
 }
 
+/* How next-event estimation samples triangle q0 q1 q2 from p: returns its solid angle, with the
+ * unit directions to its corners in a, b, c, when by solid angle, and 0 when by area (also when
+ * p lies on a corner). Most triangles a path meets are small in its view, so the lower bound is
+ * tested without the arctangent and the divisions: with corner vectors d_i of lengths l_i,
+ * tan(omega / 2) = |d0 . (d1 x d2)| / (l0 l1 l2 + (d0.d1) l2 + (d1.d2) l0 + (d2.d0) l1), and
+ * omega is below the bound when that ratio is below tan(bound / 2) with a positive denominator. */
+KD_INLINE float pt_spherical_solid_angle(float3 p, float3 q0, float3 q1, float3 q2, float3* a, float3* b, float3* c) {
+  float3 d0 = q0 - p, d1 = q1 - p, d2 = q2 - p;
+  float l0 = kd_length(d0), l1 = kd_length(d1), l2 = kd_length(d2);
+  if (!(l0 > 0.0f && l1 > 0.0f && l2 > 0.0f)) return 0.0f;
+  float volume = fabs(kd_dot(d0, kd_cross(d1, d2)));
+  float denominator = l0 * l1 * l2 + kd_dot(d0, d1) * l2 + kd_dot(d1, d2) * l0 + kd_dot(d2, d0) * l1;
+  if (denominator > 0.0f && volume < PT_TAN_HALF_MIN_SPHERICAL * denominator) return 0.0f;
+  *a = d0 / l0;
+  *b = d1 / l1;
+  *c = d2 / l2;
+  float solid_angle = pt_solid_angle_of(*a, *b, *c);
+  return pt_use_spherical_sampling(solid_angle) ? solid_angle : 0.0f;
+}
+
 /* Solid-angle density of next-event estimation's sample in a direction that meets the triangle
- * (area `area`, solid angle `solid_angle`) at squared distance dist2 and cosine cos_light, given
- * the light's pick probability per unit area. */
-KD_INLINE float pt_triangle_light_pdf(float pick_per_area, float area, float solid_angle, float dist2,
+ * (area `area`) at squared distance dist2 and cosine cos_light, given the light's pick
+ * probability per unit area and pt_spherical_solid_angle's answer (0: sampled by area). */
+KD_INLINE float pt_triangle_light_pdf(float pick_per_area, float area, float spherical_solid_angle, float dist2,
                                       float cos_light) {
-  return pick_per_area * (pt_use_spherical_sampling(solid_angle) ? area / solid_angle : dist2 / cos_light);
+  return pick_per_area * (spherical_solid_angle > 0.0f ? area / spherical_solid_angle : dist2 / cos_light);
 }
 
 /* The component of v orthogonal to unit w, normalized. */

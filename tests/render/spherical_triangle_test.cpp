@@ -19,14 +19,17 @@ struct Triangle {
   float3 q0, q1, q2;
 };
 
+// The solid angle whatever the technique; 0 when p lies on a corner.
 float solid_angle(float3 p, const Triangle& t) {
-  float3 a{}, b{}, c{};
-  return pt_triangle_solid_angle(p, t.q0, t.q1, t.q2, &a, &b, &c);
+  float3 d0 = t.q0 - p, d1 = t.q1 - p, d2 = t.q2 - p;
+  float l0 = kd_length(d0), l1 = kd_length(d1), l2 = kd_length(d2);
+  if (!(l0 > 0 && l1 > 0 && l2 > 0)) return 0;
+  return pt_solid_angle_of(d0 / l0, d1 / l1, d2 / l2);
 }
 
 float3 sample(float3 p, const Triangle& t, float u0, float u1) {
   float3 a{}, b{}, c{};
-  float omega = pt_triangle_solid_angle(p, t.q0, t.q1, t.q2, &a, &b, &c);
+  float omega = pt_spherical_solid_angle(p, t.q0, t.q1, t.q2, &a, &b, &c);
   return pt_sample_spherical_triangle(a, b, c, omega, u0, u1);
 }
 
@@ -62,13 +65,45 @@ TEST(SphericalTriangle, SolidAngleOfKnownTriangles) {
 
 TEST(SphericalTriangle, UsesSolidAngleSamplingOnlyBetweenTheThresholds) {
   EXPECT_FALSE(pt_use_spherical_sampling(0.0f));
-  EXPECT_FALSE(pt_use_spherical_sampling(1e-4f));
-  EXPECT_TRUE(pt_use_spherical_sampling(1e-3f));
+  EXPECT_FALSE(pt_use_spherical_sampling(0.04f));
+  EXPECT_TRUE(pt_use_spherical_sampling(0.06f));
   EXPECT_TRUE(pt_use_spherical_sampling(2.0f));
   EXPECT_FALSE(pt_use_spherical_sampling(6.25f));
-  // The density follows the decision: by area it is dist^2 / cos, by solid angle 1 / omega.
-  EXPECT_FLOAT_EQ(pt_triangle_light_pdf(0.5f, 2.0f, 1e-4f, 9.0f, 0.5f), 0.5f * 9.0f / 0.5f);
+  // The density follows the decision (0: by area): by area it is dist^2 / cos, by solid angle
+  // 1 / omega.
+  EXPECT_FLOAT_EQ(pt_triangle_light_pdf(0.5f, 2.0f, 0.0f, 9.0f, 0.5f), 0.5f * 9.0f / 0.5f);
   EXPECT_FLOAT_EQ(pt_triangle_light_pdf(0.5f, 2.0f, 0.1f, 9.0f, 0.5f), 0.5f * 2.0f / 0.1f);
+}
+
+TEST(SphericalTriangle, DecisionWithoutTheArctangentAgreesWithTheSolidAngle) {
+  // pt_spherical_solid_angle tests the lower bound on tan(omega / 2) from unnormalised corner
+  // vectors; away from the bounds (within 1e-4 relative) it must decide as the solid angle does,
+  // and return that solid angle when it samples by solid angle. Triangles from 0.003 to 30 times
+  // their distance, so solid angles from about 1e-5 sr to nearly 2 pi.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> coord(-1, 1);
+  int spherical = 0, by_area = 0;
+  for (int i = 0; i < 20000; ++i) {
+    float scale = std::pow(10.0f, 2 * coord(rng) - 0.5f);
+    float3 p{coord(rng), coord(rng), coord(rng)};
+    Triangle t{{p.x + scale * coord(rng), p.y + scale * coord(rng), p.z + 1 + scale * coord(rng)},
+               {p.x + scale * coord(rng), p.y + scale * coord(rng), p.z + 1 + scale * coord(rng)},
+               {p.x + scale * coord(rng), p.y + scale * coord(rng), p.z + 1 + scale * coord(rng)}};
+    float omega = solid_angle(p, t);
+    if (std::abs(omega / PT_MIN_SPHERICAL_SOLID_ANGLE - 1) < 1e-4f || std::abs(omega / PT_MAX_SPHERICAL_SOLID_ANGLE - 1) < 1e-4f)
+      continue;
+    float3 a{}, b{}, c{};
+    float decided = pt_spherical_solid_angle(p, t.q0, t.q1, t.q2, &a, &b, &c);
+    if (pt_use_spherical_sampling(omega)) {
+      ASSERT_EQ(decided, omega) << "case " << i;
+      ++spherical;
+    } else {
+      ASSERT_EQ(decided, 0.0f) << "case " << i << ", solid angle " << omega;
+      ++by_area;
+    }
+  }
+  EXPECT_GT(spherical, 1000);
+  EXPECT_GT(by_area, 1000);
 }
 
 // Random triangles seen from random points, from near (large solid angles) to far.

@@ -43,6 +43,27 @@ KD_STATIC_ASSERT(PT_RADIANCE_CHANNELS + PT_AOV_ALBEDO_CHANNELS + PT_AOV_NORMAL_C
                      PT_MAX_FILM_CHANNELS,
                  "PT_MAX_FILM_CHANNELS holds every channel");
 
+/* Scene features: bits of PtRenderParams::features, and the KD_FEATURE_* defines of the same names
+ * (librender's kernel_feature_bits picks them). An OpenCL program is built with the defines of its
+ * scene's features only, so what a scene lacks is compiled out. The C++ build
+ * (librender/src/render_host.cpp) compiles every feature in and reads these bits where a part
+ * compiled in would otherwise run without the data it needs (kernels/pt_path.h, PT_USES). */
+#define PT_FEATURE_EMISSION (1u << 0)
+#define PT_FEATURE_MIRROR (1u << 1)
+#define PT_FEATURE_GLOSSY (1u << 2)
+#define PT_FEATURE_GLASS (1u << 3)
+#define PT_FEATURE_METALLIC_ROUGHNESS (1u << 4)
+#define PT_FEATURE_ALPHA (1u << 5)
+#define PT_FEATURE_TEXTURES (1u << 6)
+#define PT_FEATURE_METAL_ROUGH_TEXTURE (1u << 7)
+#define PT_FEATURE_NORMAL_MAP (1u << 8)
+#define PT_FEATURE_EMISSIVE_TEXTURE (1u << 9)
+#define PT_FEATURE_NORMALS (1u << 10)
+#define PT_FEATURE_ENVIRONMENT (1u << 11)
+#define PT_FEATURE_PUNCTUAL (1u << 12)
+/* Not a feature but a test switch (KD_MIS_OFF): light samples at full weight, no MIS. */
+#define PT_FEATURE_MIS_OFF (1u << 13)
+
 /* Fixed-point accumulation: every sample value is rounded to a multiple of 2^-PT_FIXED_BITS and
  * summed as int64, so the sum of a sample range does not depend on the order of the additions and
  * ranges rendered apart merge exactly. Values are clamped to +-PT_FIXED_MAX first. */

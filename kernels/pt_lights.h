@@ -10,14 +10,22 @@
 
 /* Weights of a light sample and of a BSDF sample that found a light, given both strategies'
  * solid-angle densities. KD_MIS_OFF (a test switch) keeps the estimator unbiased without MIS:
- * light samples count in full, BSDF samples only where light sampling cannot reach. */
-#ifdef KD_MIS_OFF
-inline float pt_mis_light(float light_pdf, float bsdf_pdf) { return 1.0f; }
-inline float pt_mis_bsdf(float bsdf_pdf, float light_pdf) { return light_pdf > 0.0f ? 0.0f : 1.0f; }
+ * light samples count in full, BSDF samples only where light sampling cannot reach. The C++ build
+ * (KD_ALL_FEATURES) reads the switch from params (PT_FEATURE_MIS_OFF). */
+#if defined(KD_ALL_FEATURES)
+#define PT_MIS_OFF(params) (((params)->features & PT_FEATURE_MIS_OFF) != 0u)
+#elif defined(KD_MIS_OFF)
+#define PT_MIS_OFF(params) 1
 #else
-inline float pt_mis_light(float light_pdf, float bsdf_pdf) { return pt_power_heuristic(light_pdf, bsdf_pdf); }
-inline float pt_mis_bsdf(float bsdf_pdf, float light_pdf) { return pt_power_heuristic(bsdf_pdf, light_pdf); }
+#define PT_MIS_OFF(params) 0
 #endif
+inline float pt_mis_light(KD_GLOBAL const PtRenderParams* params, float light_pdf, float bsdf_pdf) {
+  return PT_MIS_OFF(params) ? 1.0f : pt_power_heuristic(light_pdf, bsdf_pdf);
+}
+inline float pt_mis_bsdf(KD_GLOBAL const PtRenderParams* params, float bsdf_pdf, float light_pdf) {
+  if (PT_MIS_OFF(params)) return light_pdf > 0.0f ? 0.0f : 1.0f;
+  return pt_power_heuristic(bsdf_pdf, light_pdf);
+}
 
 /* Probability that next-event estimation samples the emissive triangles. */
 #if defined(KD_FEATURE_ENVIRONMENT) || defined(KD_FEATURE_PUNCTUAL)

@@ -66,6 +66,8 @@ inline void pt_apply_textures(PtMaterial* m, float3* color, float3* n, float3 ng
                               KD_GLOBAL const PtTexture* textures, KD_GLOBAL const float4* texels,
                               KD_GLOBAL const kd_u32* idx, float u, float v) {
 #ifdef KD_FEATURE_TEXTURES
+  /* Only a textured material reads the UVs: a scene without UVs has no texture indices. */
+  if (m->texture < 0 && m->metal_rough_texture < 0 && m->normal_texture < 0) return;
   float2 uv = pt_triangle_uv(uvs, idx, u, v);
   if (m->texture >= 0) *color *= kd_xyz(pt_texture_lookup(textures, texels, m->texture, uv));
 #ifdef KD_FEATURE_METAL_ROUGH_TEXTURE

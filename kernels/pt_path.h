@@ -2,7 +2,8 @@
  * (emission with MIS, Russian roulette, next-event estimation, BSDF sampling), resolve the
  * shadow ray, add the finished sample to the film. The megakernel runs these steps in a loop
  * per work-item; the wavefront form runs each step as its own kernel over a buffer of paths.
- * Compiles as C++ too: tests/render/cpu_integrator.h runs it on the CPU against the kernel. */
+ * Compiles as C++ too: librender/src/render_host.cpp runs it on the CPU (kdrender --device host),
+ * and tests/render/cpu_integrator.h checks that against the kernel bit for bit. */
 #ifndef PT_PATH_H
 #define PT_PATH_H
 
@@ -115,6 +116,7 @@ inline uint pt_path_key(const PtPath* path, KD_GLOBAL const PtRenderParams* para
 inline int pt_path_occluded(const PtSceneData* scene, const PtPath* path, KD_GLOBAL const PtRenderParams* params) {
   RayRecord ray = pt_shadow_ray(path);
 #ifdef KD_FEATURE_ALPHA
+  if (!PT_USES(params, PT_FEATURE_ALPHA)) return kd_intersect_any(&scene->kd, ray);
   uint key = pt_path_key(path, params) ^ 0x9e3779b9u; /* decided apart from the bounce ray's */
   for (int layer = 0; layer < PT_MAX_ALPHA_LAYERS; ++layer) {
     HitRecord hit = kd_intersect_closest(&scene->kd, ray);
@@ -216,7 +218,7 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, KD_GLOBAL cons
 #endif
   float pick_per_area = PT_SELECT_TRIANGLES(params) * pt_luminance(emission) * params->light_area_pdf_scale;
   float light_pdf = pt_triangle_light_pdf(pick_per_area, 0.5f * twice_area, solid_angle, dist2, cos_light);
-  float weight = pt_mis_light(light_pdf, bsdf_pdf);
+  float weight = pt_mis_light(params, light_pdf, bsdf_pdf);
   float3 origin = pt_offset_origin(p, ng);
   float3 target = pt_offset_origin(p + sqrt(dist2) * wi, light_normal);
   path->shadow_origin = origin;
@@ -227,13 +229,14 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, KD_GLOBAL cons
 
 #if defined(KD_FEATURE_ENVIRONMENT) || defined(KD_FEATURE_PUNCTUAL)
 /* Next-event estimation towards a sampled environment direction or punctual light. */
-inline void pt_shadow_towards(PtPath* path, const PtSceneData* scene, const PtMaterial* m, float3 color, float3 p,
-                              float3 n, float3 ng, float3 wo, PtLightSample ls) {
+inline void pt_shadow_towards(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
+                              const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng, float3 wo,
+                              PtLightSample ls) {
   if (kd_dot(ls.wi, ng) <= 0.0f || pt_max3(ls.value) <= 0.0f) return;
   float bsdf_pdf;
   float3 f_cos = pt_bsdf_eval(m, scene->coat_tables, color, n, wo, ls.wi, &bsdf_pdf);
   if (pt_max3(f_cos) <= 0.0f) return;
-  float weight = ls.pdf > 0.0f ? pt_mis_light(ls.pdf, bsdf_pdf) : 1.0f;
+  float weight = ls.pdf > 0.0f ? pt_mis_light(params, ls.pdf, bsdf_pdf) : 1.0f;
   float3 origin = pt_offset_origin(p, ng);
   path->shadow_origin = origin;
   path->shadow_span = ls.wi * ls.distance;
@@ -255,7 +258,7 @@ inline void pt_next_event_any(PtPath* path, const PtSceneData* scene, KD_GLOBAL 
   u -= params->select_triangles;
 #ifdef KD_FEATURE_ENVIRONMENT
   if (u < params->select_environment) {
-    pt_shadow_towards(path, scene, m, color, p, n, ng, wo,
+    pt_shadow_towards(path, scene, params, m, color, p, n, ng, wo,
                       pt_env_sample_light(scene->env_texels, scene->env_cdf, params, p,
                                           pt_path_sample2(path, params, PT_DIM_ENV_U)));
     return;
@@ -265,7 +268,7 @@ inline void pt_next_event_any(PtPath* path, const PtSceneData* scene, KD_GLOBAL 
 #ifdef KD_FEATURE_PUNCTUAL
   float rest = 1.0f - params->select_triangles - params->select_environment;
   if (params->punctual_count > 0 && rest > 0.0f) {
-    pt_shadow_towards(path, scene, m, color, p, n, ng, wo,
+    pt_shadow_towards(path, scene, params, m, color, p, n, ng, wo,
                       pt_punctual_sample_light(scene->punctuals, params, p, fmin(u / rest, 0.99999994f)));
   }
 #endif
@@ -278,7 +281,7 @@ inline void pt_next_event_any(PtPath* path, const PtSceneData* scene, KD_GLOBAL 
 inline void pt_path_escape(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params) {
   float2 uv = pt_env_uv(params, path->direction);
   float weight = 1.0f;
-  if (path->bsdf_pdf > 0.0f) weight = pt_mis_bsdf(path->bsdf_pdf, pt_env_pdf(scene->env_cdf, params, uv));
+  if (path->bsdf_pdf > 0.0f) weight = pt_mis_bsdf(params, path->bsdf_pdf, pt_env_pdf(scene->env_cdf, params, uv));
   path->radiance += path->throughput * pt_env_lookup(scene->env_texels, params, uv) * weight;
 }
 #endif
@@ -291,7 +294,7 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, KD_GLOBAL cons
   path->shadow_pending = 0;
   if (hit.triangle == KD_NO_HIT) {
 #ifdef KD_FEATURE_ENVIRONMENT
-    pt_path_escape(path, scene, params);
+    if (PT_USES(params, PT_FEATURE_ENVIRONMENT)) pt_path_escape(path, scene, params);
 #endif
     path->alive = 0;
     return;
@@ -309,11 +312,13 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, KD_GLOBAL cons
   float3 ng_facing = front ? ng : -ng;
   float3 n = ng_facing;
 #ifdef KD_FEATURE_NORMALS
-  float3 ns = w0 * pt_load3(scene->normals, idx[0]) + hit.u * pt_load3(scene->normals, idx[1]) +
-              hit.v * pt_load3(scene->normals, idx[2]);
-  if (kd_dot(ns, ns) > 0.0f) {
-    ns = kd_normalize(ns);
-    n = kd_dot(ns, ng_facing) < 0.0f ? -ns : ns;
+  if (PT_USES(params, PT_FEATURE_NORMALS)) {
+    float3 ns = w0 * pt_load3(scene->normals, idx[0]) + hit.u * pt_load3(scene->normals, idx[1]) +
+                hit.v * pt_load3(scene->normals, idx[2]);
+    if (kd_dot(ns, ns) > 0.0f) {
+      ns = kd_normalize(ns);
+      n = kd_dot(ns, ng_facing) < 0.0f ? -ns : ns;
+    }
   }
 #endif
   PtMaterial m = scene->materials[scene->material_ids[hit.triangle]];
@@ -335,7 +340,7 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, KD_GLOBAL cons
   }
   float3 beta = path->throughput;
 #ifdef KD_FEATURE_EMISSION
-  if (m.type == PT_EMISSIVE && front) {
+  if (m.type == PT_EMISSIVE && front && PT_USES(params, PT_FEATURE_EMISSION)) {
     float3 emission = vload3(0, m.emission);
 #ifdef KD_FEATURE_EMISSIVE_TEXTURE
     float3 radiance = pt_textured_emission(&m, scene->uvs, scene->textures, scene->texels, idx, hit.u, hit.v);
@@ -351,7 +356,7 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, KD_GLOBAL cons
       float pick_per_area = PT_SELECT_TRIANGLES(params) * pt_luminance(emission) * params->light_area_pdf_scale;
       float light_pdf = pt_triangle_light_pdf(pick_per_area, 0.5f * kd_length(kd_cross(p1 - p0, p2 - p0)), solid_angle,
                                               hit.t * hit.t, kd_dot(ng, wo));
-      weight = pt_mis_bsdf(path->bsdf_pdf, light_pdf);
+      weight = pt_mis_bsdf(params, path->bsdf_pdf, light_pdf);
     }
     path->radiance += beta * radiance * weight;
   }

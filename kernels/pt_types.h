@@ -85,11 +85,23 @@ typedef struct PtRenderParams {
   float select_triangles, select_environment;
   kd_u32 punctual_count;
   float env_strength;
-  kd_u32 pad0;
+  kd_u32 features; /* PT_FEATURE_* (pt_codes.h) of the scene */
 } PtRenderParams;
 KD_STATIC_ASSERT(sizeof(PtRenderParams) == 176 && KD_OFFSETOF(PtRenderParams, width) == 96 &&
-                     KD_OFFSETOF(PtRenderParams, sampler) == 136 && KD_OFFSETOF(PtRenderParams, pad0) == 172,
+                     KD_OFFSETOF(PtRenderParams, sampler) == 136 && KD_OFFSETOF(PtRenderParams, features) == 172,
                  "PtRenderParams: 176 bytes, members where the other side reads them");
+
+/* Whether the scene uses feature `bit` (PT_FEATURE_*, pt_codes.h) in code compiled under its
+ * KD_FEATURE_* define. An OpenCL program is built for its scene's features, so there the answer is
+ * always yes and costs nothing. The C++ build defines KD_ALL_FEATURES (and every KD_FEATURE_*) and
+ * asks params: a part compiled in then does exactly what the kernel without it does wherever the
+ * scene lacks the feature. The other KD_FEATURE_* parts need no bit: they act only on data the
+ * scene has (a material's type, a texture index >= 0, a light count > 0). */
+#ifdef KD_ALL_FEATURES
+#define PT_USES(params, bit) (((params)->features & (bit)) != 0u)
+#else
+#define PT_USES(params, bit) 1
+#endif
 
 /* Bytes of one PtPath (kernels/pt_path.h, checked there): the host sizes wavefront buffers by it. */
 #define PT_PATH_BYTES 176

@@ -1,150 +1,28 @@
-// Scene and tree upload (see device_scene.h).
+// Upload of a scene's kernel arrays (see device_scene.h).
 #include "device_scene.h"
 
-#include <kdray/coat_tables.h>
-#include <kdray/tangents.h>
-#include <kdray/traverse.h>
-#include <kdray/util.h>
-
-#include <kernels/pt_scene_args.h>
-#include <kernels/pt_types.h>
-
-#include <cmath>
-#include <map>
-#include <utility>
-
 namespace kdray {
+
 namespace {
-
-float luminance(const Vec3& c) { return (c.x + c.y + c.z) / 3.0f; }
-
-double triangle_area(const Scene& scene, uint32_t triangle) {
-  const Vec3& a = scene.positions[scene.indices[3 * triangle]];
-  const Vec3& b = scene.positions[scene.indices[3 * triangle + 1]];
-  const Vec3& c = scene.positions[scene.indices[3 * triangle + 2]];
-  double e1[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, e2[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
-  double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
-  return 0.5 * std::sqrt(cx * cx + cy * cy + cz * cz);
-}
-
-template <typename T>
-cl::Buffer upload_vector(cl::Runtime& runtime, const std::vector<T>& values) {
-  return runtime.buffer(values.size() * sizeof(T), values.data());
-}
-
-PtPunctual device_punctual(const Light& light) {
-  PtPunctual p{};
-  p.type = static_cast<kd_u32>(light.type);
-  const Vec3* vectors[3] = {&light.position, &light.direction, &light.color};
-  float* out[3] = {p.position, p.direction, p.power};
-  for (int k = 0; k < 3; ++k) {
-    out[k][0] = vectors[k]->x;
-    out[k][1] = vectors[k]->y;
-    out[k][2] = vectors[k]->z;
-  }
-  p.cos_inner = std::cos(light.inner_cone_radians);
-  p.cos_outer = std::cos(light.outer_cone_radians);
-  return p;
-}
-
+cl::Buffer upload(cl::Runtime& runtime, const HostArray& array) { return runtime.buffer(array.bytes, array.data); }
 }  // namespace
 
-DeviceGeometry upload_geometry(cl::Runtime& runtime, const Scene& scene, const KdTree& tree) {
-  DeviceGeometry geometry;
-  geometry.nodes = upload_vector(runtime, tree.nodes);
-  geometry.leaf_triangles = upload_vector(runtime, tree.leaf_triangles);
-  geometry.triangle_vertices = upload_vector(runtime, gather_triangle_vertices(scene));
-  geometry.indices = upload_vector(runtime, scene.indices);
-  const Vec3& lo = tree.bounds.min;
-  const Vec3& hi = tree.bounds.max;
-  float min[3] = {lo.x, lo.y, lo.z}, max[3] = {hi.x, hi.y, hi.z};
-  for (int axis = 0; axis < 3; ++axis) {
-    geometry.bounds_min[axis] = min[axis];
-    geometry.bounds_max[axis] = max[axis];
-  }
-  return geometry;
+DeviceGeometry upload_geometry(cl::Runtime& runtime, const GeometryArrays& geometry) {
+  DeviceGeometry device;
+#define KD_UPLOAD_GEOMETRY(type, name) device.name = upload(runtime, geometry.name);
+#define KD_SKIP(type, name)
+  PT_SCENE_BUFFERS(KD_UPLOAD_GEOMETRY, KD_SKIP)
+#undef KD_UPLOAD_GEOMETRY
+  return device;
 }
 
-DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree& tree,
-                         const Environment* environment) {
+DeviceScene upload_scene(cl::Runtime& runtime, const SceneArrays& arrays) {
   DeviceScene device;
-  device.geometry = upload_geometry(runtime, scene, tree);
-  device.material_ids = upload_vector(runtime, scene.material_ids);
-  device.normals = upload_vector(runtime, scene.normals);
-  device.uvs = upload_vector(runtime, scene.uvs);
-  // Files carry tangents when they need them; a scene made in memory may not.
-  device.tangents = upload_vector(runtime, scene.tangents.empty() ? tangents_on_vertices(scene) : scene.tangents);
-
-  // Colour textures are sRGB-encoded, normal and metallic-roughness maps are data: a texture
-  // gets one device copy per way it is read.
-  std::vector<PtTexture> textures;
-  std::vector<float> texels;  // RGBA per texel
-  std::map<std::pair<int32_t, bool>, int32_t> device_texture;
-  auto texture_index = [&](int32_t index, bool linear) -> int32_t {
-    if (index < 0 || scene.uvs.empty()) return -1;
-    auto [entry, added] = device_texture.try_emplace({index, linear}, int32_t(textures.size()));
-    if (!added) return entry->second;
-    const Texture& texture = scene.textures[index];
-    textures.push_back(PtTexture{static_cast<kd_u32>(texels.size() / 4), texture.width, texture.height, 0});
-    for (size_t i = 0; i < texture.rgba.size(); ++i)
-      texels.push_back(i % 4 == 3 || linear ? texture.rgba[i] / 255.0f : srgb_to_linear(texture.rgba[i] / 255.0f));
-    return entry->second;
-  };
-
-  std::vector<PtMaterial> materials;
-  for (const Material& m : scene.materials) {
-    PtMaterial pm{};
-    pm.base_color[0] = m.base_color.x;
-    pm.base_color[1] = m.base_color.y;
-    pm.base_color[2] = m.base_color.z;
-    pm.type = static_cast<kd_u32>(m.type);
-    pm.emission[0] = m.emission.x;
-    pm.emission[1] = m.emission.y;
-    pm.emission[2] = m.emission.z;
-    pm.roughness = m.roughness;
-    pm.ior = m.ior;
-    pm.metallic = m.metallic;
-    pm.alpha = m.alpha;
-    pm.alpha_cutoff = m.alpha_mode == AlphaMode::Opaque ? 0.0f : m.alpha_mode == AlphaMode::Blend ? -1.0f : m.alpha_cutoff;
-    pm.texture = texture_index(m.diffuse_texture, false);
-    pm.metal_rough_texture = texture_index(m.metal_rough_texture, true);
-    pm.normal_texture = texture_index(m.normal_texture, true);
-    pm.emissive_texture = texture_index(m.emissive_texture, false);
-    materials.push_back(pm);
-  }
-  device.materials = upload_vector(runtime, materials);
-  std::vector<float> coat_etas;
-  for (const PtMaterial& m : materials)
-    if (m.type == static_cast<kd_u32>(MaterialType::MetallicRoughness)) coat_etas.push_back(m.ior);
-  device.coat_tables = upload_vector(runtime, coat_etas.empty() ? std::vector<float>() : build_coat_tables(coat_etas));
-  device.textures = upload_vector(runtime, textures);
-  device.texels = upload_vector(runtime, texels);
-
-  // Power-weighted emitter table; triangles whose emission has no power are never picked.
-  std::vector<PtLight> lights;
-  double total = 0;
-  std::vector<double> powers;
-  for (uint32_t triangle : scene.emissive_triangles) {
-    const Material& m = scene.materials[scene.material_ids[triangle]];
-    double power = luminance(m.emission) * triangle_area(scene, triangle);
-    if (!(power > 0) || m.type != MaterialType::Emissive) continue;
-    total += power;
-    powers.push_back(total);
-    lights.push_back(PtLight{triangle, 0});
-  }
-  for (size_t i = 0; i < lights.size(); ++i) lights[i].cdf = static_cast<float>(powers[i] / total);
-  if (!lights.empty()) lights.back().cdf = 1.0f;
-  device.light_count = static_cast<uint32_t>(lights.size());
-  device.light_area_pdf_scale = total > 0 ? static_cast<float>(1.0 / total) : 0.0f;
-  device.lights = upload_vector(runtime, lights);
-
-  device.env_texels = upload_vector(runtime, environment ? environment->rgb : std::vector<float>());
-  device.env_cdf = upload_vector(runtime, environment ? environment_sampling_table(*environment) : std::vector<float>());
-
-  std::vector<PtPunctual> punctuals;
-  for (const Light& light : scene.lights) punctuals.push_back(device_punctual(light));
-  device.punctual_count = static_cast<uint32_t>(punctuals.size());
-  device.punctuals = upload_vector(runtime, punctuals);
+  device.geometry = upload_geometry(runtime, arrays.geometry);
+#define KD_UPLOAD_SHADING(type, name) device.name = upload(runtime, arrays.name);
+  PT_SCENE_BUFFERS(KD_SKIP, KD_UPLOAD_SHADING)
+#undef KD_UPLOAD_SHADING
+#undef KD_SKIP
   return device;
 }
 

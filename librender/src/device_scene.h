@@ -1,12 +1,9 @@
-// Internal to librender: the one place where a scene and its tree are turned into device
-// buffers (layouts of kernels/pt_types.h), shared by the renderer and the trace kernel.
+// Internal to librender: the one place where a scene's kernel arrays (scene_arrays.h) become
+// device buffers, shared by the renderer and the trace kernel.
 #pragma once
 
 #include "opencl_runtime.h"
-
-#include <kdray/environment.h>
-#include <kdray/kdtree.h>
-#include <kdray/scene.h>
+#include "scene_arrays.h"
 
 namespace kdray {
 
@@ -14,7 +11,6 @@ struct DeviceGeometry {
   cl::Buffer nodes, leaf_triangles;
   cl::Buffer triangle_vertices;  // gather_triangle_vertices: what traversal and shading read
   cl::Buffer indices;            // 3 per triangle: vertex numbers of normals and uvs
-  float bounds_min[3] = {0, 0, 0}, bounds_max[3] = {0, 0, 0};
 };
 
 struct DeviceScene {
@@ -23,15 +19,10 @@ struct DeviceScene {
   cl::Buffer env_texels, env_cdf;  // kernels/pt_environment.h
   cl::Buffer punctuals;            // PtPunctual per Scene::lights entry
   cl::Buffer coat_tables;          // kernels/pt_coat.h, for the metallic-roughness materials' etas
-  uint32_t light_count = 0;
-  uint32_t punctual_count = 0;
-  float light_area_pdf_scale = 0;  // 1 / sum(luminance(Le) * area)
 };
 
-DeviceGeometry upload_geometry(cl::Runtime& runtime, const Scene& scene, const KdTree& tree);
-// environment may be null (then its buffers are empty).
-DeviceScene upload_scene(cl::Runtime& runtime, const Scene& scene, const KdTree& tree,
-                         const Environment* environment);
+DeviceGeometry upload_geometry(cl::Runtime& runtime, const GeometryArrays& geometry);
+DeviceScene upload_scene(cl::Runtime& runtime, const SceneArrays& arrays);
 
 // Binds the PT_SCENE_ARGS arguments of kernel (the list of kernels/pt_scene_args.h), params last,
 // then `rest` in order; returns the index of the next argument.

@@ -1,5 +1,6 @@
 // The render driver: picks the kernel features, builds the program, uploads the scene and
-// runs sample passes of the megakernel (or the wavefront form) into a fixed-point film.
+// runs sample passes of the megakernel (or the wavefront form) into a fixed-point film; or, for
+// the device "host", runs them with the C++ build of the same code (render_host.cpp).
 #include "render_internal.h"
 
 #include <kdray/error.h>
@@ -74,14 +75,14 @@ void check_settings(const RenderSettings& s) {
 }
 
 // Next-event estimation picks each kind of light that gives light with the same probability.
-void set_light_selection(PtRenderParams& params, const DeviceScene& device, const Environment* environment) {
-  const bool triangles = device.light_count > 0;
+void set_light_selection(PtRenderParams& params, const SceneArrays& arrays, const Environment* environment) {
+  const bool triangles = arrays.light_count > 0;
   const bool env = environment && environment_mean_luminance(*environment) > 0;
-  const bool punctual = device.punctual_count > 0;
+  const bool punctual = arrays.punctual_count > 0;
   const int kinds = int(triangles) + int(env) + int(punctual);
   params.select_triangles = triangles ? 1.0f / float(kinds) : 0.0f;
   params.select_environment = env ? 1.0f / float(kinds) : 0.0f;
-  params.punctual_count = device.punctual_count;
+  params.punctual_count = arrays.punctual_count;
   if (environment) {
     params.env_width = environment->width;
     params.env_height = environment->height;
@@ -161,39 +162,76 @@ std::shared_ptr<const Environment> render_environment(const Scene& scene, const 
   return white;
 }
 
-std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device) {
-  bool mirror = false, glossy = false, glass = false, metal_rough = false, alpha = false;
-  bool color_textures = false, metal_rough_textures = false, normal_maps = false, emissive_textures = false;
+uint32_t kernel_feature_bits(const Scene& scene, const RenderSettings& settings) {
+  uint32_t bits = 0;
   const bool uvs = !scene.uvs.empty();
+  bool textures = false;
   for (const Material& m : scene.materials) {
-    mirror |= m.type == MaterialType::Mirror;
-    glossy |= m.type == MaterialType::RoughConductor;
-    glass |= m.type == MaterialType::Dielectric;
-    metal_rough |= m.type == MaterialType::MetallicRoughness;
-    alpha |= m.alpha_mode != AlphaMode::Opaque;
-    color_textures |= uvs && m.diffuse_texture >= 0;
-    metal_rough_textures |= uvs && m.metal_rough_texture >= 0;
-    normal_maps |= uvs && m.normal_texture >= 0;
-    emissive_textures |= uvs && m.emissive_texture >= 0;
+    if (m.type == MaterialType::Mirror) bits |= PT_FEATURE_MIRROR;
+    if (m.type == MaterialType::RoughConductor) bits |= PT_FEATURE_GLOSSY;
+    if (m.type == MaterialType::Dielectric) bits |= PT_FEATURE_GLASS;
+    if (m.type == MaterialType::MetallicRoughness) bits |= PT_FEATURE_METALLIC_ROUGHNESS;
+    if (m.alpha_mode != AlphaMode::Opaque) bits |= PT_FEATURE_ALPHA;
+    if (!uvs) continue;
+    textures |= m.diffuse_texture >= 0 || m.metal_rough_texture >= 0 || m.normal_texture >= 0 || m.emissive_texture >= 0;
+    if (m.metal_rough_texture >= 0) bits |= PT_FEATURE_METAL_ROUGH_TEXTURE;
+    if (m.normal_texture >= 0) bits |= PT_FEATURE_NORMAL_MAP;
+    if (m.emissive_texture >= 0 && !scene.emissive_triangles.empty()) bits |= PT_FEATURE_EMISSIVE_TEXTURE;
   }
-  const bool emission = !scene.emissive_triangles.empty();
+  if (textures) bits |= PT_FEATURE_TEXTURES;
+  if (!scene.emissive_triangles.empty()) bits |= PT_FEATURE_EMISSION;
+  if (!scene.normals.empty()) bits |= PT_FEATURE_NORMALS;
+  if (render_environment(scene, settings)) bits |= PT_FEATURE_ENVIRONMENT;
+  if (!scene.lights.empty()) bits |= PT_FEATURE_PUNCTUAL;
+  if (!settings.mis) bits |= PT_FEATURE_MIS_OFF;
+  return bits;
+}
+
+std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device) {
+  static const std::pair<uint32_t, const char*> kDefines[] = {
+      {PT_FEATURE_EMISSION, "KD_FEATURE_EMISSION"},
+      {PT_FEATURE_MIRROR, "KD_FEATURE_MIRROR"},
+      {PT_FEATURE_GLOSSY, "KD_FEATURE_GLOSSY"},
+      {PT_FEATURE_GLASS, "KD_FEATURE_GLASS"},
+      {PT_FEATURE_METALLIC_ROUGHNESS, "KD_FEATURE_METALLIC_ROUGHNESS"},
+      {PT_FEATURE_ALPHA, "KD_FEATURE_ALPHA"},
+      {PT_FEATURE_TEXTURES, "KD_FEATURE_TEXTURES"},
+      {PT_FEATURE_METAL_ROUGH_TEXTURE, "KD_FEATURE_METAL_ROUGH_TEXTURE"},
+      {PT_FEATURE_NORMAL_MAP, "KD_FEATURE_NORMAL_MAP"},
+      {PT_FEATURE_EMISSIVE_TEXTURE, "KD_FEATURE_EMISSIVE_TEXTURE"},
+      {PT_FEATURE_NORMALS, "KD_FEATURE_NORMALS"},
+      {PT_FEATURE_ENVIRONMENT, "KD_FEATURE_ENVIRONMENT"},
+      {PT_FEATURE_PUNCTUAL, "KD_FEATURE_PUNCTUAL"},
+      {PT_FEATURE_MIS_OFF, "KD_MIS_OFF"},
+  };
+  const uint32_t bits = kernel_feature_bits(scene, settings);
   std::string options = "-cl-std=CL1.2";
-  if (emission) options += " -DKD_FEATURE_EMISSION";
-  if (mirror) options += " -DKD_FEATURE_MIRROR";
-  if (glossy) options += " -DKD_FEATURE_GLOSSY";
-  if (glass) options += " -DKD_FEATURE_GLASS";
-  if (metal_rough) options += " -DKD_FEATURE_METALLIC_ROUGHNESS";
-  if (alpha) options += " -DKD_FEATURE_ALPHA";
-  if (color_textures || metal_rough_textures || normal_maps || emissive_textures) options += " -DKD_FEATURE_TEXTURES";
-  if (metal_rough_textures) options += " -DKD_FEATURE_METAL_ROUGH_TEXTURE";
-  if (normal_maps) options += " -DKD_FEATURE_NORMAL_MAP";
-  if (emission && emissive_textures) options += " -DKD_FEATURE_EMISSIVE_TEXTURE";
-  if (!scene.normals.empty()) options += " -DKD_FEATURE_NORMALS";
-  if (render_environment(scene, settings)) options += " -DKD_FEATURE_ENVIRONMENT";
-  if (!scene.lights.empty()) options += " -DKD_FEATURE_PUNCTUAL";
-  if (!settings.mis) options += " -DKD_MIS_OFF";
+  for (const auto& [bit, name] : kDefines)
+    if (bits & bit) options += std::string(" -D") + name;
   if (device.short_stack_size) options += " -DKD_SHORT_STACK_SIZE=" + std::to_string(device.short_stack_size);
   return options;
+}
+
+PtRenderParams render_params(const Scene& scene, const RenderSettings& settings, const Camera& camera,
+                             const SceneArrays& arrays, const Environment* environment) {
+  PtRenderParams params{};
+  set_camera(params, camera, settings.width, settings.height);
+  for (int axis = 0; axis < 3; ++axis) {
+    params.bounds_min[axis] = arrays.geometry.bounds_min[axis];
+    params.bounds_max[axis] = arrays.geometry.bounds_max[axis];
+  }
+  params.width = settings.width;
+  params.height = settings.height;
+  params.seed = settings.seed;
+  params.max_bounces = settings.max_bounces;
+  params.sampler = static_cast<uint32_t>(settings.sampler);
+  params.light_count = arrays.light_count;
+  params.light_area_pdf_scale = arrays.light_area_pdf_scale;
+  set_light_selection(params, arrays, environment);
+  params.aov_mask = aov_mask(settings);
+  params.film_channels = film_channel_count(settings);
+  params.features = kernel_feature_bits(scene, settings);
+  return params;
 }
 
 void RenderJob::set_pass(uint32_t sample_offset, uint32_t sample_count) {
@@ -206,23 +244,35 @@ void RenderJob::set_pass(uint32_t sample_offset, uint32_t sample_count) {
 
 namespace {
 
-// One device's part of a render: the scene uploaded to it, its own film and its program.
-struct DeviceRender {
-  RenderJob job;
-  cl::Kernel megakernel;  // null in the wavefront form
-  size_t film_bytes = 0;
-  RenderStats stats;      // device, kernel, build and upload
+// One OpenCL device's part of a render: the scene uploaded to it, its own film and its program.
+class DeviceRender : public RenderWorker {
+ public:
+  DeviceRender(cl::Runtime& runtime, DeviceScene scene, const PtRenderParams& params, cl_program program)
+      : job{runtime, std::move(scene), params, {}, {}, {}, {}, program, 0, 0} {}
 
-  void pass(uint32_t first, uint32_t count) {
+  void pass(uint32_t first, uint32_t count) override {
     if (!megakernel.get()) return run_wavefront_pass(job, first, count);
     job.set_pass(first, count);
     cl::zero_buffer(job.runtime.queue(), job.counter, sizeof(cl_uint));
     cl::run_kernel(job.runtime.queue(), megakernel.get(), job.global_size, job.local_size);
     cl::check(clFinish(job.runtime.queue()), "clFinish");
   }
+
+  void add_film(std::vector<int64_t>& film, RenderStats& totals) override {
+    std::vector<int64_t> sums(film.size());
+    cl::read_buffer(job.runtime.queue(), job.film, sums.size() * sizeof(int64_t), sums.data());
+    for (size_t i = 0; i < sums.size(); ++i) film[i] += sums[i];
+    cl_ulong counters[2] = {0, 0};
+    cl::read_buffer(job.runtime.queue(), job.stats, sizeof counters, counters);
+    totals.rays += counters[0];
+    totals.nonfinite_values += counters[1];
+  }
+
+  RenderJob job;
+  cl::Kernel megakernel;  // null in the wavefront form
 };
 
-std::unique_ptr<DeviceRender> prepare_device(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
+std::unique_ptr<RenderWorker> prepare_device(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
                                              const DeviceSelection& device, const Camera& camera,
                                              const std::shared_ptr<const Environment>& environment) {
   cl::Runtime& runtime = cl::runtime_for(device);
@@ -236,30 +286,13 @@ std::unique_ptr<DeviceRender> prepare_device(const Scene& scene, const KdTree& t
   stats.build_source = build.source;
 
   auto upload_start = Clock::now();
-  auto device_render = std::make_unique<DeviceRender>(DeviceRender{
-      RenderJob{runtime, upload_scene(runtime, scene, tree, environment.get()), PtRenderParams{}, {}, {}, {}, {},
-                build.program, 0, 0},
-      {}, 0, {}});
+  const SceneArrays arrays = scene_arrays(scene, tree, environment.get());
+  auto device_render = std::make_unique<DeviceRender>(
+      runtime, upload_scene(runtime, arrays), render_params(scene, settings, camera, arrays, environment.get()),
+      build.program);
   RenderJob& job = device_render->job;
-  PtRenderParams& params = job.params;
-  set_camera(params, camera, settings.width, settings.height);
-  for (int axis = 0; axis < 3; ++axis) {
-    params.bounds_min[axis] = job.scene.geometry.bounds_min[axis];
-    params.bounds_max[axis] = job.scene.geometry.bounds_max[axis];
-  }
-  params.width = settings.width;
-  params.height = settings.height;
-  params.seed = settings.seed;
-  params.max_bounces = settings.max_bounces;
-  params.sampler = static_cast<uint32_t>(settings.sampler);
-  params.light_count = job.scene.light_count;
-  params.light_area_pdf_scale = job.scene.light_area_pdf_scale;
-  set_light_selection(params, job.scene, environment.get());
-  params.aov_mask = aov_mask(settings);
-  params.film_channels = film_channel_count(settings);
-  const size_t film_bytes = size_t(settings.width) * settings.height * params.film_channels * sizeof(int64_t);
-  device_render->film_bytes = film_bytes;
-  job.params_buffer = runtime.buffer(sizeof params, &params);
+  const size_t film_bytes = size_t(settings.width) * settings.height * job.params.film_channels * sizeof(int64_t);
+  job.params_buffer = runtime.buffer(sizeof job.params, &job.params);
   job.film = runtime.buffer(film_bytes, nullptr, CL_MEM_READ_WRITE);
   job.counter = runtime.buffer(sizeof(cl_uint), nullptr, CL_MEM_READ_WRITE);
   job.stats = runtime.buffer(2 * sizeof(cl_ulong), nullptr, CL_MEM_READ_WRITE);
@@ -275,6 +308,7 @@ std::unique_ptr<DeviceRender> prepare_device(const Scene& scene, const KdTree& t
   cl::check(clFinish(runtime.queue()), "clFinish");
   stats.upload_seconds = seconds_since(upload_start);
   device_render->stats = stats;
+  device_render->device_index = runtime.info().index;
   return device_render;
 }
 
@@ -360,7 +394,7 @@ class SampleScheduler {
 };
 
 // Renders ranges on one device until the scheduler has none left for it.
-void run_device(DeviceRender& device, size_t index, SampleScheduler& scheduler, DeviceShare& share) {
+void run_device(RenderWorker& device, size_t index, SampleScheduler& scheduler, DeviceShare& share) {
   for (;;) {
     auto [first, count] = scheduler.next(index);
     if (count == 0) return;
@@ -386,40 +420,20 @@ std::string join_distinct(const std::vector<std::string>& items, const char* sep
 
 }  // namespace
 
-KernelInputs read_kernel_inputs(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
-                                const DeviceSelection& device) {
-  check_settings(settings);
-  std::unique_ptr<DeviceRender> render = prepare_device(scene, tree, settings, device, render_camera(scene, settings),
-                                                        render_environment(scene, settings));
-  RenderJob& job = render->job;
-  job.set_pass(settings.sample_offset, settings.spp);
-  auto read_all = [&](const cl::Buffer& buffer) {
-    size_t bytes = 0;
-    cl::check(clGetMemObjectInfo(buffer.get(), CL_MEM_SIZE, sizeof bytes, &bytes, nullptr), "clGetMemObjectInfo");
-    std::vector<uint8_t> contents(bytes);
-    cl::read_buffer(job.runtime.queue(), buffer, bytes, contents.data());
-    return contents;
-  };
-  KernelInputs inputs;
-#define KD_READ_GEOMETRY(type, name) inputs.buffers.push_back(read_all(job.scene.geometry.name));
-#define KD_READ_SHADING(type, name) inputs.buffers.push_back(read_all(job.scene.name));
-  PT_SCENE_BUFFERS(KD_READ_GEOMETRY, KD_READ_SHADING)
-#undef KD_READ_GEOMETRY
-#undef KD_READ_SHADING
-  inputs.params = read_all(job.params_buffer);
-  inputs.options = render->stats.kernel_options;
-  return inputs;
-}
-
 Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settings, const DeviceSelection& device,
             RenderStats* stats_out, const RenderProgress& progress) {
   check_settings(settings);
   const Camera camera = render_camera(scene, settings);
   const std::shared_ptr<const Environment> environment = render_environment(scene, settings);
-  const std::vector<DeviceSelection> selections = split_device_selection(device);
-  std::vector<std::unique_ptr<DeviceRender>> devices;
-  for (const DeviceSelection& selection : selections) {
-    devices.push_back(prepare_device(scene, tree, settings, selection, camera, environment));
+  std::vector<std::unique_ptr<RenderWorker>> devices;
+  if (device.device == kHostDevice) {
+    if (settings.form == RenderForm::Wavefront) throw Error("", "the wavefront form is for OpenCL devices, not the host");
+    devices.push_back(prepare_host(scene, tree, settings, device, camera, environment));
+  } else {
+    if (device.threads) throw Error("", "threads are for the host device; OpenCL devices run their own");
+    for (const DeviceSelection& selection : split_device_selection(device)) {
+      devices.push_back(prepare_device(scene, tree, settings, selection, camera, environment));
+    }
   }
 
   RenderStats stats = devices.front()->stats;
@@ -431,7 +445,7 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settin
   for (const auto& d : devices) {
     names.push_back(d->stats.device);
     sources.push_back(d->stats.build_source);
-    stats.devices.push_back({d->stats.device, d->job.runtime.info().index, 0, 0});
+    stats.devices.push_back({d->stats.device, d->device_index, 0, 0});
   }
   stats.build_source = join_distinct(sources, ", ");
 
@@ -466,16 +480,8 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settin
   film.width = settings.width;
   film.height = settings.height;
   film.channels = film_channel_names(settings);
-  film.sums.assign(devices.front()->film_bytes / sizeof(int64_t), 0);
-  std::vector<int64_t> sums(film.sums.size());
-  for (auto& d : devices) {
-    cl::read_buffer(d->job.runtime.queue(), d->job.film, d->film_bytes, sums.data());
-    for (size_t i = 0; i < sums.size(); ++i) film.sums[i] += sums[i];
-    cl_ulong counters[2] = {0, 0};
-    cl::read_buffer(d->job.runtime.queue(), d->job.stats, sizeof counters, counters);
-    stats.rays += counters[0];
-    stats.nonfinite_values += counters[1];
-  }
+  film.sums.assign(film.pixel_count() * film.channels.size(), 0);
+  for (auto& d : devices) d->add_film(film.sums, stats);
   film.sample_offset = settings.sample_offset;
   film.sample_count = stats.samples_rendered;
   film.seed = settings.seed;

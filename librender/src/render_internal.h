@@ -1,5 +1,5 @@
-// Internal to librender: the state one render keeps on the device, shared by the megakernel
-// driver (render.cpp) and the wavefront driver (wavefront.cpp).
+// Internal to librender: what the render driver (render.cpp) shares with the wavefront driver
+// (wavefront.cpp) and the host renderer (render_host.cpp).
 #pragma once
 
 #include "device_scene.h"
@@ -8,8 +8,39 @@
 
 #include <kernels/pt_types.h>
 
+#include <cstdint>
+#include <memory>
+#include <vector>
+
 namespace kdray {
 
+// One participant of a render, an OpenCL device or the host: renders sample ranges into a film
+// of its own.
+class RenderWorker {
+ public:
+  virtual ~RenderWorker() = default;
+  // Adds samples [first, first + count) of every pixel to its film.
+  virtual void pass(uint32_t first, uint32_t count) = 0;
+  // Adds its film to `sums` (the Film::sums layout) and its ray and non-finite counts to `stats`.
+  virtual void add_film(std::vector<int64_t>& sums, RenderStats& stats) = 0;
+
+  RenderStats stats;      // device, kernel, build and upload
+  int device_index = -1;  // in list_devices(); -1 for the host
+};
+
+// The PT_FEATURE_* bits of a render (kernels/pt_codes.h): what its kernel is built with.
+uint32_t kernel_feature_bits(const Scene& scene, const RenderSettings& settings);
+
+// The kernels' parameters of a render, but for the sample range (set per pass).
+PtRenderParams render_params(const Scene& scene, const RenderSettings& settings, const Camera& camera,
+                             const SceneArrays& arrays, const Environment* environment);
+
+// The host worker: the C++ build of kernels/pt_path.h on the CPU (render_host.cpp).
+std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
+                                           const DeviceSelection& device, const Camera& camera,
+                                           const std::shared_ptr<const Environment>& environment);
+
+// The state one render keeps on an OpenCL device.
 struct RenderJob {
   cl::Runtime& runtime;
   DeviceScene scene;

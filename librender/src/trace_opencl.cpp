@@ -33,7 +33,8 @@ std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree,
   stats.build_source = build.source;
 
   auto upload_start = Clock::now();
-  DeviceGeometry geometry = upload_geometry(runtime, scene, tree);
+  const GeometryArrays arrays = geometry_arrays(scene, tree);
+  DeviceGeometry geometry = upload_geometry(runtime, arrays);
   const std::vector<uint32_t> empty_leaves = empty_leaf_bits(tree);
   cl::Buffer empty_leaf_buffer = runtime.buffer(empty_leaves.size() * sizeof(uint32_t), empty_leaves.data());
   cl::Buffer ray_buffer = runtime.buffer(rays.size() * sizeof(RayRecord), rays.data());
@@ -41,8 +42,8 @@ std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree,
   cl::Buffer counter = runtime.buffer(sizeof(cl_uint), nullptr, CL_MEM_READ_WRITE);
   cl::zero_buffer(runtime.queue(), counter, sizeof(cl_uint));
   cl::Kernel kernel = cl::create_kernel(build.program, "kd_trace_closest");
-  cl_float4 bounds_min = {{geometry.bounds_min[0], geometry.bounds_min[1], geometry.bounds_min[2], 0}};
-  cl_float4 bounds_max = {{geometry.bounds_max[0], geometry.bounds_max[1], geometry.bounds_max[2], 0}};
+  cl_float4 bounds_min = {{arrays.bounds_min[0], arrays.bounds_min[1], arrays.bounds_min[2], 0}};
+  cl_float4 bounds_max = {{arrays.bounds_max[0], arrays.bounds_max[1], arrays.bounds_max[2], 0}};
   cl_uint ray_count = static_cast<cl_uint>(rays.size());
   cl_uint arg = 0;
   cl::set_arg(kernel.get(), arg++, geometry.nodes);

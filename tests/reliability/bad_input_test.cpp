@@ -104,7 +104,11 @@ std::vector<BadInput> table() {
       {"kdrender/damaged merge input", {"--merge", "{DIR}/good.exr", "{DIR}/damaged-exr", "-o", out + ".exr"}, 1, "damaged-exr"},
       {"kdrender/text merge input", {"--merge", "{DIR}/good.exr", "{DIR}/text.txt", "-o", out + ".exr"}, 1, "text.txt"},
       {"kdrender/zero spp", {scene, tree, "-o", out + ".png", "--spp", "0"}, 2, "spp"},
-      {"kdrender/host device", {scene, tree, "-o", out + ".png", "--device", "host"}, 2, "OpenCL devices only"},
+      {"kdrender/unknown device", {scene, tree, "-o", out + ".png", "--device", "tpu"}, 2, "'tpu' is not host"},
+      {"kdrender/threads with OpenCL", {scene, tree, "-o", out + ".png", "--device", "cpu", "--threads", "2"}, 2,
+       "--threads 2 is for --device host"},
+      {"kdrender/local size on host", {scene, tree, "-o", out + ".png", "--device", "host", "--local-size", "8"}, 2,
+       "not --device host"},
 
       {"kdtrace/missing scene", {"{DIR}/missing.kdscene", tree, "--generate", "random"}, 1, "missing.kdscene"},
       {"kdtrace/missing rays", {scene, tree, "--rays", "{DIR}/missing.rays"}, 1, "missing.rays"},
@@ -112,6 +116,8 @@ std::vector<BadInput> table() {
       {"kdtrace/truncated rays", {scene, tree, "--rays", "{DIR}/truncated.rays"}, 1, "truncated.rays"},
       {"kdtrace/damaged scene", {"{DIR}/damaged-kdscene", tree, "--generate", "random"}, 1, "damaged-kdscene"},
       {"kdtrace/negative count", {scene, tree, "--generate", "random", "--count", "-5"}, 2, "count"},
+      {"kdtrace/threads with OpenCL", {scene, tree, "--generate", "random", "--device", "cpu", "--threads", "2"}, 2,
+       "--threads 2 is for --device host"},
 
       {"kdinfo/missing file", {"{DIR}/missing.kdtree"}, 1, "missing.kdtree"},
       {"kdinfo/wrong kind", {"{DIR}/text.txt"}, 1, "text.txt"},

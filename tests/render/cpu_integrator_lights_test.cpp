@@ -1,9 +1,6 @@
 // The C++ build of the path tracer against the kernel (tests/render/cpu_integrator.h) with the
 // lights other than emissive triangles: an environment map and point, spot and directional
 // lights over a glTF metallic-roughness sphere on a diffuse floor.
-#define KD_FEATURE_METALLIC_ROUGHNESS
-#define KD_FEATURE_ENVIRONMENT
-#define KD_FEATURE_PUNCTUAL
 
 #include "cpu_integrator.h"
 #include "light_scenes.h"
@@ -35,7 +32,10 @@ TEST(CpuIntegrator, EnvironmentAndPunctualLightsMatchTheKernelBitForBit) {
   Environment env = sun_environment();
   env.rotate_degrees = 30;
   settings.environment = shared_environment(env);
-  EXPECT_GT(expect_cpu_matches_kernel(scene, settings), 24u * 24u / 2);
+  EXPECT_GT(expect_host_matches_kernel(
+                scene, settings,
+                {"-DKD_FEATURE_METALLIC_ROUGHNESS", "-DKD_FEATURE_ENVIRONMENT", "-DKD_FEATURE_PUNCTUAL"}),
+            24u * 24u / 2);
 }
 
 }  // namespace

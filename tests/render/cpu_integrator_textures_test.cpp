@@ -2,15 +2,6 @@
 // textured glTF asset brings: a metallic-roughness sphere with base-colour (its alpha cut out),
 // metallic-roughness and normal textures, per-vertex normals and UVs (tangents from them), over a
 // diffuse floor under a directional light and a lamp with an emissive texture.
-#define KD_FEATURE_EMISSION
-#define KD_FEATURE_METALLIC_ROUGHNESS
-#define KD_FEATURE_ALPHA
-#define KD_FEATURE_TEXTURES
-#define KD_FEATURE_METAL_ROUGH_TEXTURE
-#define KD_FEATURE_NORMAL_MAP
-#define KD_FEATURE_EMISSIVE_TEXTURE
-#define KD_FEATURE_NORMALS
-#define KD_FEATURE_PUNCTUAL
 
 #include "cpu_integrator.h"
 #include "light_scenes.h"
@@ -60,7 +51,12 @@ TEST(CpuIntegrator, TexturedMetallicRoughnessAssetMatchesTheKernelBitForBit) {
   scene.normals.resize(scene.positions.size(), Vec3{0, 1, 0});
   for (int quad = 0; quad < 2; ++quad) scene.uvs.insert(scene.uvs.end(), {{0, 0}, {0, 1}, {1, 1}, {1, 0}});
   scene.lights.push_back(directional_light({0.3f, -0.8f, -0.5f}, 3.0f));
-  EXPECT_GT(expect_cpu_matches_kernel(scene, tiny_settings(24, 4)), 24u * 24u / 2);
+  EXPECT_GT(expect_host_matches_kernel(scene, tiny_settings(24, 4),
+                                       {"-DKD_FEATURE_EMISSION", "-DKD_FEATURE_METALLIC_ROUGHNESS", "-DKD_FEATURE_ALPHA",
+                                        "-DKD_FEATURE_TEXTURES", "-DKD_FEATURE_METAL_ROUGH_TEXTURE",
+                                        "-DKD_FEATURE_NORMAL_MAP", "-DKD_FEATURE_EMISSIVE_TEXTURE",
+                                        "-DKD_FEATURE_NORMALS", "-DKD_FEATURE_PUNCTUAL"}),
+            24u * 24u / 2);
 }
 
 }  // namespace

@@ -105,7 +105,42 @@ TEST_F(KdrenderCli, ListsDevices) {
   EXPECT_EQ(run.exit_code, 0) << run.out;
   EXPECT_NE(run.out.find("[default]"), std::string::npos) << run.out;
   EXPECT_EQ(kdrender(cornell(path("nodevice.png"), "--device 99")).exit_code, 1);
-  EXPECT_EQ(kdrender(cornell(path("host.png"), "--device host")).exit_code, 2);  // kdrender runs on OpenCL only
+}
+
+// --device host renders with the C++ build of the kernel's code: the same EXR pixels and sums as
+// PoCL (--device cpu), whatever its thread count, and its sample ranges merge with PoCL's.
+TEST_F(KdrenderCli, HostWritesTheSameExrAsPocl) {
+  const std::string options = "--spp 3 --aov albedo,depth --seed 4 ";
+  test::ToolRun host = kdrender(cornell(path("host.exr"), options + "--device host --threads 2 --json"));
+  ASSERT_EQ(host.exit_code, 0) << host.out;
+  nlohmann::json report = nlohmann::json::parse(host.out);
+  EXPECT_EQ(report["device"], "host");
+  EXPECT_EQ(report["threads"], 2);
+  EXPECT_GT(report["rays"].get<double>(), 0.0);
+  ASSERT_EQ(kdrender(cornell(path("host1.exr"), options + "--device host --threads 1 --quiet")).exit_code, 0);
+  ASSERT_EQ(kdrender(cornell(path("cpu.exr"), options + "--device cpu --quiet")).exit_code, 0);
+  const Film on_host = read_film_exr(path("host.exr")), on_pocl = read_film_exr(path("cpu.exr"));
+  EXPECT_EQ(on_host.channels, on_pocl.channels);
+  EXPECT_EQ(on_host.sums, on_pocl.sums);
+  EXPECT_EQ(on_host.means(), on_pocl.means());
+  EXPECT_EQ(read_film_exr(path("host1.exr")).sums, on_pocl.sums);
+
+  ASSERT_EQ(kdrender(cornell(path("pocl-low.exr"), "--spp 1 --aov albedo,depth --seed 4 --device cpu -q")).exit_code, 0);
+  ASSERT_EQ(kdrender(cornell(path("host-high.exr"), "--spp 2 --sample-offset 1 --aov albedo,depth --seed 4 "
+                                                     "--device host -q")).exit_code, 0);
+  test::ToolRun merge = kdrender("--merge " + test::shell_quoted(path("pocl-low.exr")) + " " +
+                                 test::shell_quoted(path("host-high.exr")) + " -o " +
+                                 test::shell_quoted(path("merged.exr")) + " -q");
+  ASSERT_EQ(merge.exit_code, 0) << merge.out;
+  EXPECT_EQ(read_film_exr(path("merged.exr")).sums, on_pocl.sums);
+}
+
+TEST_F(KdrenderCli, HostRendersWithoutAnOpenClPlatform) {
+  test::ToolRun run = test::run_command("OCL_ICD_VENDORS=" + test::shell_quoted(path("no-vendors")) + " " +
+                                        test::shell_quoted(test::tool_path("kdrender")) + " " +
+                                        cornell(path("no-opencl.png"), "--spp 1 --device host -q") + " 2>&1");
+  EXPECT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_TRUE(fs::exists(path("no-opencl.png")));
 }
 
 TEST_F(KdrenderCli, WithoutTheImageModuleFailsNamingTheOutputAndWritesNothing) {

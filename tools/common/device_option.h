@@ -1,5 +1,6 @@
 // --device: one vocabulary in every tool that runs on a device.
-//   host       kdray's own C++ code on the CPU (libkdtree's traversal), threads from --threads
+//   host       kdray's own C++ code on the CPU, threads from --threads (kdtrace: libkdtree's
+//              traversal; kdrender: the C++ build of the path tracer, the OpenCL kernel's bits)
 //   auto       an OpenCL GPU if there is one, else the OpenCL CPU device
 //   cpu, gpu   the first OpenCL device of that type (cpu is PoCL)
 //   INDEX      an OpenCL device by its number in `--device list`
@@ -29,22 +30,34 @@ inline DeviceKind device_kind(const std::string& choice) {
   return DeviceKind::OpenCl;
 }
 
-// Adds --device to `app`; `with_host` says whether the tool has a host (C++) implementation.
-inline CLI::Option* add_device_option(CLI::App& app, std::string& choice, bool with_host) {
-  const std::string help = std::string(with_host ? "host (kdray's C++ code on the CPU, with --threads), or an " : "An ") +
-                           "OpenCL device: auto (a GPU if present, else the CPU), cpu (PoCL), gpu, an index of "
-                           "--device list, or all (or I,J,...: several at once); list prints the OpenCL devices";
+// Adds --device to `app`.
+inline CLI::Option* add_device_option(CLI::App& app, std::string& choice) {
+  const std::string help =
+      "host (kdray's C++ code on the CPU, with --threads), or an OpenCL device: auto (a GPU if present, else the "
+      "CPU), cpu (PoCL), gpu, an index of --device list, or all (or I,J,...: several at once); list prints the "
+      "OpenCL devices";
   CLI::Validator names(
-      [with_host](std::string& text) -> std::string {
-        if (text == "auto" || text == "cpu" || text == "gpu" || text == "all" || text == "list") return {};
-        if (text == "host" && !with_host) return "this tool runs on OpenCL devices only, not host (cpu is PoCL)";
-        if (text == "host") return {};
+      [](std::string& text) -> std::string {
+        if (text == "host" || text == "auto" || text == "cpu" || text == "gpu" || text == "all" || text == "list") return {};
         if (!text.empty() && text.size() < 64 && text.find_first_not_of("0123456789,") == std::string::npos) return {};
-        return "'" + text + "' is not " + (with_host ? "host, " : "") +
-               "auto, cpu, gpu, all, list, a device index or a comma-separated list of them";
+        return "'" + text + "' is not host, auto, cpu, gpu, all, list, a device index or a comma-separated list of them";
       },
       "DEVICE");
   return app.add_option("--device", choice, help)->check(names)->capture_default_str()->group("Device");
+}
+
+// Adds --threads, the worker threads of --device host.
+inline CLI::Option* add_threads_option(CLI::App& app, unsigned& threads) {
+  return app.add_option("--threads", threads, "Threads of --device host; 0: all cores")
+      ->capture_default_str()
+      ->group("Device");
+}
+
+// --threads counts the host's threads: with an OpenCL device it would be ignored, so it is refused.
+inline void check_threads_option(const std::string& device, unsigned threads) {
+  if (threads != 0 && device_kind(device) != DeviceKind::Host) {
+    throw UsageError("--threads " + std::to_string(threads) + " is for --device host; OpenCL devices run their own");
+  }
 }
 
 // `--device list`: every OpenCL device, the one `auto` picks marked.

@@ -100,8 +100,9 @@ void add_frame_options(CLI::App& app, FrameOptions& o) {
                "environment of radiance 1)");
   app.add_flag("--no-mis", o.no_mis, "Test switch: light samples at full weight, no multiple importance sampling");
 
-  kdray::tool::add_device_option(app, o.device.device, false);
+  kdray::tool::add_device_option(app, o.device.device);
   defaults->group("Device");
+  kdray::tool::add_threads_option(app, o.device.threads);
   app.add_option("--local-size", o.device.local_size, "OpenCL work-group size (0: device default, 64 on CPUs)")
       ->capture_default_str();
   app.add_option("--stack-size", o.device.short_stack_size,
@@ -149,6 +150,10 @@ std::shared_ptr<const kdray::Environment> EnvironmentCache::get(const FrameOptio
 Frame resolve_frame(const FrameOptions& o, EnvironmentCache& environments) {
   if (kdray::tool::device_kind(o.device.device) == kdray::tool::DeviceKind::List) {
     throw UsageError("--device list prints the devices; it renders nothing");
+  }
+  kdray::tool::check_threads_option(o.device.device, o.device.threads);
+  if (o.device.device == kdray::kHostDevice && (o.device.local_size || o.device.short_stack_size || o.wavefront)) {
+    throw UsageError("--local-size, --stack-size and --wavefront are for OpenCL devices, not --device host");
   }
   if (o.output.empty()) throw UsageError("-o OUTPUT is required");
   if (!kdray::is_supported_image_path(o.output)) throw UsageError("-o " + o.output + ": use .exr, .png or .jpg");

@@ -1,5 +1,5 @@
 // kdrender: renders a .kdscene with its prebuilt .kdtree on an OpenCL device (PoCL on the CPU
-// by default) to EXR (linear float, AOVs, exact sums, metadata) or PNG/JPEG (sRGB); renders a
+// by default) or on the host (the same code compiled as C++, the same image) to EXR (linear float, AOVs, exact sums, metadata) or PNG/JPEG (sRGB); renders a
 // batch of frames of one scene from a jobs file; merges EXRs of adjacent sample ranges exactly;
 // lists devices.
 //
@@ -144,7 +144,7 @@ int render(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Renders a .kdscene with its .kdtree on OpenCL devices (path tracing), a batch of\n"
+  CLI::App app{"Renders a .kdscene with its .kdtree on OpenCL devices or the host (path tracing), a batch of\n"
                "frames (--jobs), or merges EXRs of sample ranges."};
   Options o;
   kdray::tool::add_contract(app, "kdrender", o.flags, "Print statistics as JSON on stdout instead of the summary");

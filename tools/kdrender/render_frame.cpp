@@ -45,7 +45,7 @@ nlohmann::json frame_json(const Frame& frame, const FrameResult& result) {
                        {"seconds", share.seconds},
                        {"samples_per_second", rate(double(film.pixel_count()) * share.samples, share.seconds)}});
   }
-  return {{"devices", devices},
+  nlohmann::json report = {{"devices", devices},
           {"output", frame.output},
           {"device", stats.device},
           {"form", frame.settings.form == kdray::RenderForm::Wavefront ? "wavefront" : "megakernel"},
@@ -70,6 +70,8 @@ nlohmann::json frame_json(const Frame& frame, const FrameResult& result) {
           {"rays_per_second", rate(double(stats.rays), stats.render_seconds)},
           {"mean_radiance", film.mean_radiance()},
           {"nonfinite_values", stats.nonfinite_values}};
+  if (stats.device == kdray::kHostDevice) report["threads"] = stats.threads;
+  return report;
 }
 
 void print_frame_summary(const Frame& frame, const FrameResult& result) {
@@ -80,8 +82,9 @@ void print_frame_summary(const Frame& frame, const FrameResult& result) {
               film.width, film.height, film.sample_count, film.sample_offset,
               film.sample_offset + film.sample_count - 1, film.max_bounces, kdray::sampler_name(film.sampler),
               film.seed);
-  std::printf("device %s; kernel %s (%s, %.2f s)\n", stats.device.c_str(), stats.kernel_options.c_str(),
-              stats.build_source.c_str(), stats.build_seconds);
+  const std::string threads = stats.device == kdray::kHostDevice ? " (" + std::to_string(stats.threads) + " threads)" : "";
+  std::printf("device %s%s; kernel %s (%s, %.2f s)\n", stats.device.c_str(), threads.c_str(),
+              stats.kernel_options.c_str(), stats.build_source.c_str(), stats.build_seconds);
   std::printf("render %.3f s: %.2f M samples/s, %.2f M rays/s\n", stats.render_seconds,
               rate(pixel_samples, stats.render_seconds) * 1e-6, rate(double(stats.rays), stats.render_seconds) * 1e-6);
   if (stats.devices.size() > 1) {

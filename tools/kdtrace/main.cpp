@@ -91,10 +91,10 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "Seed of a random or hard set")->capture_default_str()->group("Rays");
   app.add_option("--write-rays", write_rays_path, "Also write the generated rays to this ray file")->group("Rays");
   app.add_option("--hits", hits_path, "Hit file to write (formats/rays.md)")->group("Output");
-  kdray::tool::add_device_option(app, opencl_device.device, true);
+  kdray::tool::add_device_option(app, opencl_device.device);
   app.add_option("--local-size", opencl_device.local_size, "OpenCL work-group size; 0: the device's default")
       ->capture_default_str()->group("Device");
-  app.add_option("--threads", options.threads, "Threads of --device host; 0: all cores")->capture_default_str()->group("Device");
+  kdray::tool::add_threads_option(app, options.threads);
   app.add_option("--stack", stack_name, "Traversal stack: short (8 entries, restart), depth1, full")
       ->check(CLI::IsMember({"short", "depth1", "full"}))->capture_default_str()->group("Device");
 
@@ -102,6 +102,7 @@ int main(int argc, char** argv) {
     const kdray::tool::DeviceKind device = kdray::tool::device_kind(opencl_device.device);
     if (device == kdray::tool::DeviceKind::List) return kdray::tool::list_opencl_devices(output.json);
     if (device == kdray::tool::DeviceKind::All) throw kdray::tool::UsageError("--device all: kdtrace traces on one device");
+    kdray::tool::check_threads_option(opencl_device.device, options.threads);
     if (scene_path.empty() || tree_path.empty() == cache_folder.empty())
       throw kdray::tool::UsageError("SCENE and either TREE or --cache DIR are required");
     if (rays_path.empty() == generate.empty()) throw kdray::tool::UsageError("give one of --rays or --generate");

@@ -25,7 +25,9 @@ std::vector<DeviceInfo> list_devices();
 // How to choose and drive a device; one struct so every tool and test passes the same thing.
 struct DeviceSelection {
   // auto (a GPU if present, else the CPU) | cpu | gpu | INDEX; for a render also all | INDEX,INDEX,...
+  // or host (the C++ build on the CPU, render.h)
   std::string device = "auto";
+  unsigned threads = 0;         // host: worker threads; 0: all cores
   size_t local_size = 0;        // work-group size; 0: the device's default (64 on CPUs)
   unsigned short_stack_size = 0;  // KD_SHORT_STACK_SIZE for the traversal; 0: the kernel default
 };

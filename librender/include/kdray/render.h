@@ -1,4 +1,4 @@
-// Rendering a scene with its k-d tree on an OpenCL device: settings, statistics, the call.
+// Rendering a scene with its k-d tree on OpenCL devices or on the host: settings, statistics, the call.
 #pragma once
 
 #include <kdray/environment.h>
@@ -54,8 +54,8 @@ struct DeviceShare {
 };
 
 struct RenderStats {
-  std::string device;           // its name, or "N devices: names" for several
-  std::string kernel_options;   // the -D feature defines the program was built with
+  std::string device;           // its name, "host", or "N devices: names" for several
+  std::string kernel_options;   // the -D feature defines the program was built with (host: the scene's features)
   double build_seconds = 0;     // obtaining the OpenCL program
   std::string build_source;     // "compiled", "disk cache" or "memory"
   double upload_seconds = 0;
@@ -65,6 +65,7 @@ struct RenderStats {
   uint64_t nonfinite_values = 0;  // NaN/Inf sample values (counted as 0); should stay 0
   bool default_light = false;     // the scene had no light and the default environment lit it
   std::vector<DeviceShare> devices;  // one entry per device used
+  unsigned threads = 0;              // host: the worker threads it rendered with
 };
 
 constexpr float kDefaultLightRadiance = 1.0f;
@@ -76,24 +77,16 @@ std::shared_ptr<const Environment> render_environment(const Scene& scene, const 
 // Called after each pass with the samples per pixel done so far and the total asked for.
 using RenderProgress = std::function<void(uint32_t done, uint32_t total)>;
 
+// The device name that renders with the C++ build of the kernels' code on the CPU.
+constexpr const char* kHostDevice = "host";
+
 // Renders the range; throws kdray::Error for bad settings (size, camera, bounces). With several
 // devices (device.device "all" or a list "0,1"), each renders consecutive sample ranges sized by
 // its measured speed into its own film, and the films' exact sums add up to the single-device
-// image bit for bit.
+// image bit for bit. device.device "host" (kHostDevice) renders with the C++ build of the same
+// code on device.threads threads instead, no OpenCL involved: the same film, bit for bit.
 Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
             const DeviceSelection& device, RenderStats* stats = nullptr, const RenderProgress& progress = {});
-
-// What the path-tracing kernel reads for a render of these settings' samples, as bytes read back
-// from the device after the upload: each buffer of PT_SCENE_BUFFERS (kernels/pt_scene_args.h) in
-// its order, then one PtRenderParams, with the program's feature options. The C++ build of
-// kernels/pt_path.h runs on these to check itself against the kernel bit for bit.
-struct KernelInputs {
-  std::vector<std::vector<uint8_t>> buffers;
-  std::vector<uint8_t> params;
-  std::string options;
-};
-KernelInputs read_kernel_inputs(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
-                                const DeviceSelection& device);
 
 // The OpenCL build options (feature defines) for a scene: only what it uses, so a diffuse-only
 // scene compiles a diffuse-only kernel.

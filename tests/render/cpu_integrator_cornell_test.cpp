@@ -1,0 +1,45 @@
+// The C++ build of the path tracer against the kernel (tests/render/cpu_integrator.h) on the
+// smallest feature sets: the sample Cornell box (emission only, diffuse only) with the settings a
+// render varies (sample range, seed, bounces, sampler, MIS switch, AOVs, threads), and a scene
+// without lights under the default light (the environment only).
+#include "cpu_integrator.h"
+#include "light_scenes.h"
+
+#include <kdray/import.h>
+
+namespace kdray::test {
+namespace {
+
+RenderSettings cornell_settings() {
+  RenderSettings settings = tiny_settings(24, 3);
+  settings.camera = cornell_camera();
+  settings.sample_offset = 5;
+  settings.seed = 7;
+  return settings;
+}
+
+TEST(CpuIntegrator, CornellBoxMatchesTheKernelBitForBitOnOneThread) {
+  Scene scene = import_scene(cornell_obj(), ImportOptions{});
+  EXPECT_GT(expect_host_matches_kernel(scene, cornell_settings(), {"-DKD_FEATURE_EMISSION"}, 1), 24u * 24u / 2);
+}
+
+TEST(CpuIntegrator, CornellBoxWithoutMisMatchesTheKernelBitForBitOnTwoThreads) {
+  Scene scene = import_scene(cornell_obj(), ImportOptions{});
+  RenderSettings settings = cornell_settings();
+  settings.mis = false;
+  settings.sampler = Sampler::Independent;
+  settings.max_bounces = 2;
+  settings.aov_albedo = settings.aov_depth = true;
+  EXPECT_GT(expect_host_matches_kernel(scene, settings, {"-DKD_FEATURE_EMISSION", "-DKD_MIS_OFF"}, 2),
+            24u * 24u / 2);
+}
+
+TEST(CpuIntegrator, DefaultLightMatchesTheKernelBitForBit) {
+  Scene scene = make_sphere_scene(Material{}, 1.0f, 8, 16);
+  RenderSettings settings = tiny_settings(16, 2);
+  settings.aov_normal = true;
+  EXPECT_GT(expect_host_matches_kernel(scene, settings, {"-DKD_FEATURE_ENVIRONMENT"}), 16u * 16u / 2);
+}
+
+}  // namespace
+}  // namespace kdray::test

@@ -34,7 +34,7 @@ TEST_F(KdrenderCli, RendersPngAndReportsJsonWithAWarmSecondBuild) {
   nlohmann::json report = nlohmann::json::parse(second.out);
   EXPECT_EQ(report["build_source"], "disk cache");
   EXPECT_EQ(report["spp"], 2);
-  EXPECT_GT(report["rays_per_second"].get<double>(), 0.0);
+  EXPECT_GT(report["mrays_per_s"].get<double>(), 0.0);
   EXPECT_GT(report["samples_per_second"].get<double>(), 0.0);
   for (const char* key : {"load_seconds", "build_seconds", "render_seconds"}) EXPECT_TRUE(report.contains(key)) << key;
   EXPECT_TRUE(fs::exists(path("a.png")));

@@ -67,7 +67,7 @@ nlohmann::json frame_json(const Frame& frame, const FrameResult& result) {
           {"write_seconds", result.write_seconds},
           {"samples_per_second", rate(pixel_samples, stats.render_seconds)},
           {"rays", stats.rays},
-          {"rays_per_second", rate(double(stats.rays), stats.render_seconds)},
+          {"mrays_per_s", rate(double(stats.rays), stats.render_seconds) * 1e-6},
           {"mean_radiance", film.mean_radiance()},
           {"nonfinite_values", stats.nonfinite_values}};
 }

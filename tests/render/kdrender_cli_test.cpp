@@ -100,6 +100,13 @@ TEST_F(KdrenderCli, BadArgumentsExitWithUsageStatus) {
   EXPECT_FALSE(fs::exists(path("bad.exr")));
 }
 
+TEST_F(KdrenderCli, AovsNeedAnExrOutputOfEitherCase) {
+  EXPECT_EQ(kdrender(cornell(path("aov.png"), "--spp 1 --aov albedo --quiet")).exit_code, 2);
+  test::ToolRun run = kdrender(cornell(path("aov.EXR"), "--spp 1 --aov albedo --quiet"));
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_TRUE(fs::exists(path("aov.EXR")));
+}
+
 TEST_F(KdrenderCli, ListsDevices) {
   test::ToolRun run = kdrender("--device list");
   EXPECT_EQ(run.exit_code, 0) << run.out;

@@ -1,6 +1,7 @@
 #include "render_frame.h"
 
 #include <kdray/image_io.h>
+#include <kdray/util.h>
 
 #include <tool_main.h>
 
@@ -111,7 +112,7 @@ bool frame_already_written(const Frame& frame, const kdray::Scene& scene, uint64
   std::error_code error;
   if (!std::filesystem::is_regular_file(frame.output, error)) return false;
   const kdray::RenderSettings& s = frame.settings;
-  if (std::filesystem::path(frame.output).extension() != ".exr") {
+  if (kdray::lowercase_extension(frame.output) != ".exr") {
     auto size = kdray::read_image_size(frame.output);
     return size && size->first == s.width && size->second == s.height;
   }

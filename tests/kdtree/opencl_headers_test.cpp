@@ -180,7 +180,7 @@ TEST(KdOpenCl, KernelTraversalMatchesCpuWithDepthOneStack) {
   OpenClDevice device;
   if (!device.available()) GTEST_SKIP() << "no OpenCL device";
   ASSERT_EQ(device.build("-DKD_SHORT_STACK_SIZE=1"), "");
-  const Scene scene = test::icosphere(3, {0, 0, 0}, 1.0f);
+  const Scene scene = test::icosphere_scene(3, {0, 0, 0}, 1.0f);
   const KdTree tree = build_kdtree(scene, BuildSettings{});
   std::vector<RayRecord> rays = random_rays(scene_bounds(scene), 4096, 7);
   std::vector<HitRecord> cpu;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Batch throughput (issue 14): the 36 frames of samples/turntable.jobs (the Cornell box with the
+# Batch throughput: the 36 frames of samples/turntable.jobs (the Cornell box with the
 # Stanford bunny, bench/cornell_bunny.py --layout turntable) at 128x128, 16 spp, 8 bounces, rendered by one
 # `kdrender --jobs` process against 36 separate kdrender processes (one per line), interleaved,
 # median of RUNS (default 3) wall times. Checks that both give the same bytes for every frame.

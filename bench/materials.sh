@@ -1,5 +1,5 @@
 #!/bin/sh
-# Materials of real assets (issue "Light real assets"), measured against Mitsuba 3 and the baseline:
+# Materials of real assets (glTF, textures, punctual lights), measured against Mitsuba 3 and the baseline:
 #  1. samples/gltf_scene.py's glTF, lit by its point light, against Mitsuba 3 (bench/gltf_mitsuba.py,
 #     a `point` emitter of the same W/sr): channel means, whole image and per material, of the
 #     all-metal variant, the scene as authored (glTF plastics: kdray's coat against Mitsuba's

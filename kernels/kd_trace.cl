@@ -2,25 +2,17 @@
  * Persistent threads: each work-item fetches its own batch of rays from a global atomic counter
  * until none are left (GUIDE section 4). */
 #define KD_EMPTY_LEAF_BITS
+#include "kd_trace_args.h"
 #include "kd_traverse.h"
 
 #define KD_TRACE_BATCH 32u
 
-__kernel void kd_trace_closest(__global const KdNode* nodes, __global const kd_u32* empty_leaves,
-                               __global const kd_u32* leaf_triangles,
-                               __global const float* triangle_vertices, float4 bounds_min, float4 bounds_max, __global const RayRecord* rays,
-                               uint ray_count, __global HitRecord* hits, __global uint* next_ray) {
-  KdSceneView scene;
-  scene.nodes = nodes;
-  scene.empty_leaves = empty_leaves;
-  scene.leaf_triangles = leaf_triangles;
-  scene.triangle_vertices = triangle_vertices;
-  scene.bounds_min[0] = bounds_min.x;
-  scene.bounds_min[1] = bounds_min.y;
-  scene.bounds_min[2] = bounds_min.z;
-  scene.bounds_max[0] = bounds_max.x;
-  scene.bounds_max[1] = bounds_max.y;
-  scene.bounds_max[2] = bounds_max.z;
+#define KD_TRACE_BUFFER_ARG(type, name) __global type* name,
+#define KD_TRACE_VALUE_ARG(type, name) type name,
+__kernel void kd_trace_closest(KD_TRACE_ARGS(KD_TRACE_BUFFER_ARG, KD_TRACE_BUFFER_ARG, KD_TRACE_VALUE_ARG)
+                                   __global uint* next_ray) {
+  const KdSceneView scene = kd_scene_view(nodes, empty_leaves, leaf_triangles, triangle_vertices, bounds_min.x,
+                                          bounds_min.y, bounds_min.z, bounds_max.x, bounds_max.y, bounds_max.z);
   for (;;) {
     uint first = atomic_add(next_ray, KD_TRACE_BATCH);
     if (first >= ray_count) break;

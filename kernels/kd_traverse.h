@@ -1,5 +1,5 @@
 /* k-d tree traversal shared by the CPU reference (libkdtree) and the OpenCL kernels.
- * CONTRACT (implemented by the libkdtree work; callers rely on these names):
+ * The contract callers rely on:
  *
  *   typedef struct KdSceneView {
  *     KD_GLOBAL const KdNode* nodes;          root at index 0
@@ -88,6 +88,35 @@ typedef struct KdSceneView {
   KdTraversalCounters* counters;
 #endif
 } KdSceneView;
+
+/* The one way a KdSceneView is made, by the CPU builds and by every kernel, so a field added to
+ * it is set everywhere. The root voxel comes as six floats because the callers hold it in
+ * different forms and address spaces (float4 kernel arguments, __global parameter blocks, host
+ * arrays). empty_leaves is kept only where KD_EMPTY_LEAF_BITS is defined (pass 0 elsewhere);
+ * counters start null: a counting build points them at its own totals. */
+KD_INLINE KdSceneView kd_scene_view(KD_GLOBAL const KdNode* nodes, KD_GLOBAL const kd_u32* empty_leaves,
+                                    KD_GLOBAL const kd_u32* leaf_triangles, KD_GLOBAL const float* triangle_vertices,
+                                    float min_x, float min_y, float min_z, float max_x, float max_y, float max_z) {
+  KdSceneView view;
+  view.nodes = nodes;
+  view.leaf_triangles = leaf_triangles;
+  view.triangle_vertices = triangle_vertices;
+  view.bounds_min[0] = min_x;
+  view.bounds_min[1] = min_y;
+  view.bounds_min[2] = min_z;
+  view.bounds_max[0] = max_x;
+  view.bounds_max[1] = max_y;
+  view.bounds_max[2] = max_z;
+#ifdef KD_EMPTY_LEAF_BITS
+  view.empty_leaves = empty_leaves;
+#else
+  (void)empty_leaves;
+#endif
+#ifdef KD_TRAVERSAL_COUNTERS
+  view.counters = 0;
+#endif
+  return view;
+}
 
 /* Empty leaves are most of the leaves a ray meets. Where the host derives a bit per node at
  * load (KD_EMPTY_LEAF_BITS: 1/64 of the node array, so it stays in cache), the traversal skips

@@ -47,13 +47,8 @@ typedef struct PtSceneData {
 
 KD_INLINE PtSceneData pt_make_scene(PT_SCENE_ARGS) {
   PtSceneData scene;
-  scene.kd.nodes = nodes;
-  scene.kd.leaf_triangles = leaf_triangles;
-  scene.kd.triangle_vertices = triangle_vertices;
-  for (int i = 0; i < 3; ++i) {
-    scene.kd.bounds_min[i] = params->bounds_min[i];
-    scene.kd.bounds_max[i] = params->bounds_max[i];
-  }
+  scene.kd = kd_scene_view(nodes, 0, leaf_triangles, triangle_vertices, params->bounds_min[0], params->bounds_min[1],
+                           params->bounds_min[2], params->bounds_max[0], params->bounds_max[1], params->bounds_max[2]);
   scene.indices = indices;
   /* Every shading buffer is the scene field of its own name. */
 #define PT_SCENE_SKIP(type, name)

@@ -36,7 +36,8 @@ seeds="$out/seeds"
 rm -rf "$seeds"
 mkdir -p "$seeds"/{obj,ply,kdscene,kdtree,rays,exr}
 cp fuzz/seeds/obj/* samples/cornell-box.obj samples/cornell-box.mtl "$seeds/obj/"
-odd="$root/../shared/corpus/tinyobjloader-odd"
+# The corpus where the bench scripts look for it (bench/common.sh): CORPUS, else ../shared/corpus.
+odd="${CORPUS:-$root/../shared/corpus}/tinyobjloader-odd"
 [ -d "$odd" ] && cp "$odd"/*.obj "$odd"/*.mtl "$seeds/obj/"
 cp fuzz/seeds/ply/* "$seeds/ply/"
 export ASAN_OPTIONS=detect_leaks=0  # the seeds' tools run PoCL, which allocates for the process lifetime

@@ -17,7 +17,7 @@ namespace counting_short_stack {
 }  // namespace counting_short_stack
 
 TraversalCounts count_closest(const TraversalArrays& arrays, const RayRecord* rays, HitRecord* hits, size_t count) {
-  counting_short_stack::KdSceneView view = make_view<counting_short_stack::KdSceneView>(arrays);
+  counting_short_stack::KdSceneView view = make_view(&counting_short_stack::kd_scene_view, arrays);
   counting_short_stack::KdTraversalCounters counters{0, 0, 0};
   view.counters = &counters;
   for (size_t i = 0; i < count; ++i) hits[i] = counting_short_stack::kd_intersect_closest(&view, rays[i]);

@@ -19,19 +19,14 @@ struct TraversalArrays {
   float bounds_min[3], bounds_max[3];
 };
 
-// The KdSceneView of one compilation of kd_traverse.h (each lives in its own namespace).
-template <typename View>
-View make_view(const TraversalArrays& arrays) {
-  View view{};
-  view.nodes = arrays.nodes;
-  view.leaf_triangles = arrays.leaf_triangles;
-  view.triangle_vertices = arrays.triangle_vertices;
-  view.empty_leaves = arrays.empty_leaves;
-  for (int k = 0; k < 3; ++k) {
-    view.bounds_min[k] = arrays.bounds_min[k];
-    view.bounds_max[k] = arrays.bounds_max[k];
-  }
-  return view;
+// The KdSceneView of one compilation of kd_traverse.h: each lives in its own namespace, so the
+// caller passes that namespace's kd_scene_view.
+template <typename SceneView>
+auto make_view(SceneView scene_view, const TraversalArrays& arrays) {
+  const float* lo = arrays.bounds_min;
+  const float* hi = arrays.bounds_max;
+  return scene_view(arrays.nodes, arrays.empty_leaves, arrays.leaf_triangles, arrays.triangle_vertices, lo[0], lo[1],
+                    lo[2], hi[0], hi[1], hi[2]);
 }
 
 struct TraversalVariant {

@@ -56,14 +56,7 @@ bool clone_or_copy(const std::string& source, const std::string& destination) {
 std::optional<uint64_t> key_of(const std::string& name) {
   const std::string extension = kTreeExtension;
   if (name.size() != 16 + extension.size() || name.compare(16, std::string::npos, extension) != 0) return std::nullopt;
-  uint64_t key = 0;
-  for (size_t i = 0; i < 16; ++i) {
-    const char c = name[i];
-    if (c >= '0' && c <= '9') key = key << 4 | uint64_t(c - '0');
-    else if (c >= 'a' && c <= 'f') key = key << 4 | uint64_t(c - 'a' + 10);
-    else return std::nullopt;
-  }
-  return key;
+  return parse_hash_hex(name.substr(0, 16));
 }
 
 std::vector<std::string> read_lines(const std::string& path) {

@@ -1,10 +1,10 @@
 // Film means and exact merging (see film.h).
 #include <kdray/film.h>
 #include <kdray/error.h>
+#include <kdray/util.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 namespace kdray {
 
@@ -36,12 +36,6 @@ std::optional<Sampler> parse_sampler(const std::string& name) {
 
 namespace {
 
-std::string hex(uint64_t value) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
-  return text;
-}
-
 // Inclusive, as kdrender prints ranges: "samples 8..15".
 std::string sample_range(uint64_t first, uint64_t count) {
   return "samples " + std::to_string(first) + ".." + std::to_string(first + count - 1);
@@ -64,10 +58,10 @@ void check_same_render(const NamedFilm& first, const NamedFilm& other) {
   if (a.seed != b.seed) throw refuse("seed", number(a.seed), number(b.seed));
   if (a.max_bounces != b.max_bounces) throw refuse("max bounces", number(a.max_bounces), number(b.max_bounces));
   if (a.sampler != b.sampler) throw refuse("sampler", sampler_name(a.sampler), sampler_name(b.sampler));
-  if (a.scene_hash != b.scene_hash) throw refuse("scene", hex(a.scene_hash), hex(b.scene_hash));
-  if (a.tree_hash != b.tree_hash) throw refuse("tree", hex(a.tree_hash), hex(b.tree_hash));
+  if (a.scene_hash != b.scene_hash) throw refuse("scene", hash_hex(a.scene_hash), hash_hex(b.scene_hash));
+  if (a.tree_hash != b.tree_hash) throw refuse("tree", hash_hex(a.tree_hash), hash_hex(b.tree_hash));
   if (a.settings_hash != b.settings_hash) {
-    throw refuse("settings (camera, environment, lights)", hex(a.settings_hash), hex(b.settings_hash));
+    throw refuse("settings (camera, environment, lights)", hash_hex(a.settings_hash), hash_hex(b.settings_hash));
   }
 }
 

@@ -117,10 +117,9 @@ std::string text_attribute(const ImageHeader& header, const char* name, const st
 }
 
 uint64_t parse_hex(const std::string& path, const std::string& text) {
-  char* end = nullptr;
-  unsigned long long value = std::strtoull(text.c_str(), &end, 16);
-  if (text.empty() || *end != '\0') throw Error(path, "bad hash in the kdray metadata");
-  return value;
+  const std::optional<uint64_t> value = parse_hash_hex(text);
+  if (!value) throw Error(path, "bad hash in the kdray metadata");
+  return *value;
 }
 
 // What an OpenEXR header claims, read by kdray before OpenEXR sees the file: OpenEXR sizes its

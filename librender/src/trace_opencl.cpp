@@ -4,6 +4,8 @@
 #include <kdray/trace_opencl.h>
 #include <kdray/traverse.h>
 
+#include <kernels/kd_trace_args.h>
+
 #include <chrono>
 
 namespace kdray {
@@ -35,27 +37,29 @@ std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree,
   auto upload_start = Clock::now();
   const GeometryArrays arrays = geometry_arrays(scene, tree);
   DeviceGeometry geometry = upload_geometry(runtime, arrays);
-  const std::vector<uint32_t> empty_leaves = empty_leaf_bits(tree);
-  cl::Buffer empty_leaf_buffer = runtime.buffer(empty_leaves.size() * sizeof(uint32_t), empty_leaves.data());
-  cl::Buffer ray_buffer = runtime.buffer(rays.size() * sizeof(RayRecord), rays.data());
-  cl::Buffer hit_buffer = runtime.buffer(rays.size() * sizeof(HitRecord), nullptr, CL_MEM_WRITE_ONLY);
-  cl::Buffer counter = runtime.buffer(sizeof(cl_uint), nullptr, CL_MEM_READ_WRITE);
-  cl::zero_buffer(runtime.queue(), counter, sizeof(cl_uint));
+  // The kernel's arguments that are not DeviceGeometry buffers, named as in KD_TRACE_ARGS.
+  struct {
+    cl::Buffer empty_leaves, rays, hits;
+    cl_float4 bounds_min, bounds_max;
+    cl_uint ray_count;
+  } args;
+  const std::vector<uint32_t> empty_leaf_words = empty_leaf_bits(tree);
+  args.empty_leaves = runtime.buffer(empty_leaf_words.size() * sizeof(uint32_t), empty_leaf_words.data());
+  args.rays = runtime.buffer(rays.size() * sizeof(RayRecord), rays.data());
+  args.hits = runtime.buffer(rays.size() * sizeof(HitRecord), nullptr, CL_MEM_WRITE_ONLY);
+  args.bounds_min = {{arrays.bounds_min[0], arrays.bounds_min[1], arrays.bounds_min[2], 0}};
+  args.bounds_max = {{arrays.bounds_max[0], arrays.bounds_max[1], arrays.bounds_max[2], 0}};
+  args.ray_count = static_cast<cl_uint>(rays.size());
+  cl::Buffer next_ray = runtime.buffer(sizeof(cl_uint), nullptr, CL_MEM_READ_WRITE);
+  cl::zero_buffer(runtime.queue(), next_ray, sizeof(cl_uint));
   cl::Kernel kernel = cl::create_kernel(build.program, "kd_trace_closest");
-  cl_float4 bounds_min = {{arrays.bounds_min[0], arrays.bounds_min[1], arrays.bounds_min[2], 0}};
-  cl_float4 bounds_max = {{arrays.bounds_max[0], arrays.bounds_max[1], arrays.bounds_max[2], 0}};
-  cl_uint ray_count = static_cast<cl_uint>(rays.size());
   cl_uint arg = 0;
-  cl::set_arg(kernel.get(), arg++, geometry.nodes);
-  cl::set_arg(kernel.get(), arg++, empty_leaf_buffer);
-  cl::set_arg(kernel.get(), arg++, geometry.leaf_triangles);
-  cl::set_arg(kernel.get(), arg++, geometry.triangle_vertices);
-  cl::set_arg(kernel.get(), arg++, bounds_min);
-  cl::set_arg(kernel.get(), arg++, bounds_max);
-  cl::set_arg(kernel.get(), arg++, ray_buffer);
-  cl::set_arg(kernel.get(), arg++, ray_count);
-  cl::set_arg(kernel.get(), arg++, hit_buffer);
-  cl::set_arg(kernel.get(), arg++, counter);
+#define KD_BIND_GEOMETRY(type, name) cl::set_arg(kernel.get(), arg++, geometry.name);
+#define KD_BIND_ARG(type, name) cl::set_arg(kernel.get(), arg++, args.name);
+  KD_TRACE_ARGS(KD_BIND_GEOMETRY, KD_BIND_ARG, KD_BIND_ARG)
+#undef KD_BIND_GEOMETRY
+#undef KD_BIND_ARG
+  cl::set_arg(kernel.get(), arg++, next_ray);
   cl::check(clFinish(runtime.queue()), "clFinish");
   stats.upload_seconds = seconds_since(upload_start);
 
@@ -67,7 +71,7 @@ std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree,
     cl::check(clFinish(runtime.queue()), "clFinish");
   }
   stats.trace_seconds = seconds_since(trace_start);
-  if (!rays.empty()) cl::read_buffer(runtime.queue(), hit_buffer, hits.size() * sizeof(HitRecord), hits.data());
+  if (!rays.empty()) cl::read_buffer(runtime.queue(), args.hits, hits.size() * sizeof(HitRecord), hits.data());
   if (stats_out) *stats_out = stats;
   return hits;
 }

@@ -63,7 +63,7 @@ class SpeedVsError : public kdray::test::TempDirTest<> {
   void SetUp() override {
     scene_ = (dir_ / "cornell.kdscene").string();
     tree_ = (dir_ / "cornell.kdtree").string();
-    const std::string obj = std::string(KDRAY_SOURCE_DIR) + "/samples/cornell-box.obj";
+    const std::string obj = kdray::test::cornell_obj();
     ASSERT_EQ(run_command(tool("kdconvert") + " " + shell_quoted(obj) + " " + shell_quoted(scene_) + " --quiet").exit_code, 0);
     ASSERT_EQ(run_command(tool("kdbuild") + " " + shell_quoted(scene_) + " " + shell_quoted(tree_) + " --quiet").exit_code, 0);
   }

@@ -76,7 +76,7 @@ TEST(KdBuild, TrianglesWithNonFiniteCornersAreLeftOut) {
 }
 
 TEST(KdBuild, StatisticsDescribeTheTree) {
-  const Scene scene = test::icosphere(4, {0, 0, 0}, 1);
+  const Scene scene = test::icosphere_scene(4, {0, 0, 0}, 1);
   const KdTree tree = build_kdtree(scene, BuildSettings{});
   const TreeStats& stats = tree.stats;
   EXPECT_EQ(stats.inner_nodes + stats.leaves, tree.nodes.size());
@@ -130,7 +130,7 @@ TEST(KdBuild, PerfectSplitsLowerTheCostOfTheCornellRoom) {
 TEST(KdBuild, ReferenceBuilderAgreesOnGeneratedScenes) {
   BuildSettings no_clipping;
   no_clipping.perfect_splits = false;
-  for (const Scene& scene : {test::icosphere(3, {0.5f, 0, 0}, 2), test::box_room(), test::triangle_soup(3000, 11),
+  for (const Scene& scene : {test::icosphere_scene(3, {0.5f, 0, 0}, 2), test::box_room(), test::triangle_soup(3000, 11),
                              test::coplanar_grid(16)}) {
     for (const BuildSettings& settings : {BuildSettings{}, no_clipping}) {
       const KdTree fast = build_kdtree(scene, settings);

@@ -136,14 +136,14 @@ TEST_F(KdCli, KdinfoDescribesTreesAndSaysWhetherTheyMatchAScene) {
   EXPECT_EQ(match.exit_code, 0) << match.err;
   EXPECT_NE(match.out.find("match      yes"), std::string::npos) << match.out;
 
-  write_scene(path("other.kdscene"), test::icosphere(1, {0, 0, 0}, 1));
+  write_scene(path("other.kdscene"), test::icosphere_scene(1, {0, 0, 0}, 1));
   const ToolRun stale = run("kdinfo", path("room.kdtree") + " " + path("other.kdscene") + " --json");
   EXPECT_EQ(stale.exit_code, 1);
   EXPECT_EQ(nlohmann::json::parse(stale.out).at("match"), false);
 }
 
 TEST_F(KdCli, KdtraceRejectsStaleTreesAndBadRayFiles) {
-  write_tree(path("other.kdtree"), build_kdtree(test::icosphere(1, {0, 0, 0}, 1), BuildSettings{}));
+  write_tree(path("other.kdtree"), build_kdtree(test::icosphere_scene(1, {0, 0, 0}, 1), BuildSettings{}));
   const ToolRun stale = run("kdtrace", path("room.kdscene") + " " + path("other.kdtree") + " --generate random --count 10");
   EXPECT_EQ(stale.exit_code, 1);
   EXPECT_NE(stale.err.find("stale tree"), std::string::npos) << stale.err;

@@ -32,14 +32,8 @@ __kernel void report_features(__global int* out) {
 __kernel void trace_closest(__global const KdNode* nodes, __global const kd_u32* leaf_triangles,
                             __global const float* triangle_vertices, __global const float* bounds, __global const RayRecord* rays,
                             __global HitRecord* hits) {
-  KdSceneView scene;
-  scene.nodes = nodes;
-  scene.leaf_triangles = leaf_triangles;
-  scene.triangle_vertices = triangle_vertices;
-  for (int k = 0; k < 3; ++k) {
-    scene.bounds_min[k] = bounds[k];
-    scene.bounds_max[k] = bounds[3 + k];
-  }
+  const KdSceneView scene = kd_scene_view(nodes, 0, leaf_triangles, triangle_vertices, bounds[0], bounds[1], bounds[2],
+                                          bounds[3], bounds[4], bounds[5]);
   size_t i = get_global_id(0);
   hits[i] = kd_intersect_closest(&scene, rays[i]);
 }
@@ -186,7 +180,7 @@ TEST(KdOpenCl, KernelTraversalMatchesCpuWithDepthOneStack) {
   OpenClDevice device;
   if (!device.available()) GTEST_SKIP() << "no OpenCL device";
   ASSERT_EQ(device.build("-DKD_SHORT_STACK_SIZE=1"), "");
-  const Scene scene = test::icosphere(3, {0, 0, 0}, 1.0f);
+  const Scene scene = test::icosphere_scene(3, {0, 0, 0}, 1.0f);
   const KdTree tree = build_kdtree(scene, BuildSettings{});
   std::vector<RayRecord> rays = random_rays(scene_bounds(scene), 4096, 7);
   std::vector<HitRecord> cpu;

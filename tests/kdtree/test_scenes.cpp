@@ -2,8 +2,6 @@
 
 #include <kdray/import.h>
 
-#include <icosphere.h>
-
 #include <kernels/kd_geometry.h>
 
 #include <algorithm>
@@ -15,13 +13,7 @@
 namespace kdray::test {
 namespace {
 
-Scene finish(Scene scene) {
-  scene.material_ids.assign(scene.triangle_count(), 0);
-  scene.materials.resize(1);
-  scene.content_hash = compute_content_hash(scene);
-  scene.geometry_hash = compute_geometry_hash(scene);
-  return scene;
-}
+Scene finish(Scene scene) { return mesh_scene(std::move(scene.positions), std::move(scene.indices)); }
 
 void add_quad(Scene& scene, Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
   const uint32_t base = static_cast<uint32_t>(scene.positions.size());
@@ -47,24 +39,7 @@ uint64_t next_random(uint64_t& state) {
 }
 float unit_random(uint64_t& state) { return static_cast<float>(next_random(state) >> 40) * 0x1.0p-24f; }
 
-void corners(const Scene& scene, uint32_t triangle, double out[3][3]) {
-  for (int c = 0; c < 3; ++c) {
-    const Vec3& p = scene.positions[scene.indices[3 * triangle + c]];
-    out[c][0] = p.x;
-    out[c][1] = p.y;
-    out[c][2] = p.z;
-  }
-}
-
 }  // namespace
-
-Scene icosphere(int subdivisions, Vec3 centre, float radius) {
-  IcosphereMesh mesh = icosphere_mesh(subdivisions, centre, radius);
-  Scene scene;
-  scene.positions = std::move(mesh.positions);
-  scene.indices = std::move(mesh.indices);
-  return finish(std::move(scene));
-}
 
 Scene box_room() {
   Scene scene;
@@ -118,7 +93,7 @@ Scene mesh_file(const std::string& path) {
 bool is_origin_hit(const Scene& scene, const RayRecord& ray, const HitRecord& hit) {
   if (hit.triangle == KD_NO_HIT) return false;
   const double scale = std::max({1.0, std::fabs(double(ray.ox)), std::fabs(double(ray.oy)), std::fabs(double(ray.oz))});
-  return std::fabs(double_test(scene, ray, hit.triangle).t) <= 1e-6 * scale;
+  return std::fabs(intersect_double(scene, hit.triangle, ray).t) <= 1e-6 * scale;
 }
 
 HitRecord brute_force_float(const Scene& scene, const RayRecord& record, bool skip_origin_hits) {
@@ -141,43 +116,11 @@ HitRecord brute_force_float(const Scene& scene, const RayRecord& record, bool sk
   return best;
 }
 
-DoubleHit double_test(const Scene& scene, const RayRecord& ray, uint32_t triangle) {
-  const double origin[3] = {ray.ox, ray.oy, ray.oz};
-  const double direction[3] = {ray.dx, ray.dy, ray.dz};
-  int kz = 0;
-  for (int k = 1; k < 3; ++k)
-    if (std::fabs(direction[k]) > std::fabs(direction[kz])) kz = k;
-  int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
-  if (direction[kz] < 0) std::swap(kx, ky);
-  const double sx = direction[kx] / direction[kz], sy = direction[ky] / direction[kz], sz = 1.0 / direction[kz];
-  double p[3][3];
-  corners(scene, triangle, p);
-  double x[3], y[3], z[3];
-  for (int c = 0; c < 3; ++c) {
-    for (int k = 0; k < 3; ++k) p[c][k] -= origin[k];
-    x[c] = p[c][kx] - sx * p[c][kz];
-    y[c] = p[c][ky] - sy * p[c][kz];
-    z[c] = sz * p[c][kz];
-  }
-  const double U = x[2] * y[1] - y[2] * x[1];
-  const double V = x[0] * y[2] - y[0] * x[2];
-  const double W = x[1] * y[0] - y[1] * x[0];
-  const double det = U + V + W;
-  DoubleHit result;
-  if (det == 0.0 || !std::isfinite(det)) return result;
-  result.triangle = triangle;
-  result.margin = std::min({U / det, V / det, W / det});
-  result.t = (U * z[0] + V * z[1] + W * z[2]) / det;
-  const bool same_signs = (U >= 0 && V >= 0 && W >= 0) || (U <= 0 && V <= 0 && W <= 0);
-  result.hit = same_signs && result.t > ray.tmin && result.t < ray.tmax;
-  return result;
-}
-
 DoubleHit brute_force_double(const Scene& scene, const RayRecord& ray) {
   DoubleHit best;
   const double scale = std::max({1.0, std::fabs(double(ray.ox)), std::fabs(double(ray.oy)), std::fabs(double(ray.oz))});
   for (uint32_t triangle = 0; triangle < scene.triangle_count(); ++triangle) {
-    const DoubleHit candidate = double_test(scene, ray, triangle);
+    const DoubleHit candidate = intersect_double(scene, triangle, ray);
     if (candidate.t <= 1e-6 * scale) continue;  // the triangle the ray starts on
     if (candidate.hit && (!best.hit || candidate.t < best.t)) best = candidate;
   }

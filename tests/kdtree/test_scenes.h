@@ -5,14 +5,17 @@
 
 #include <kernels/kd_types.h>
 
+#include <double_hit.h>
+#include <icosphere.h>
+
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace kdray::test {
 
-// Builders of triangle meshes (material 0 everywhere, content hash computed).
-Scene icosphere(int subdivisions, Vec3 centre, float radius);  // closed, shared vertices
+// Builders of triangle meshes (material 0 everywhere, content hash computed); the icosphere is
+// the support library's icosphere_scene.
 Scene box_room();           // Cornell-like: axis-aligned walls and two boxes standing on the floor
 Scene triangle_soup(size_t count, uint64_t seed);  // random small triangles in the unit cube
 Scene coplanar_grid(int cells);  // a grid of triangles all in the plane z = 0.25
@@ -26,18 +29,8 @@ HitRecord brute_force_float(const Scene& scene, const RayRecord& ray, bool skip_
 // True when the hit's triangle contains the ray origin (its exact t is ~0).
 bool is_origin_hit(const Scene& scene, const RayRecord& ray, const HitRecord& hit);
 
-// The same watertight test computed entirely in double precision (from the same float inputs).
-// margin is the smallest barycentric of the hit (>= 0; near 0 when the ray grazes an edge).
-// Hits at t ~ 0 (the triangle the ray starts on) are ignored.
-struct DoubleHit {
-  bool hit = false;
-  double t = 0;
-  uint32_t triangle = KD_NO_HIT;
-  double margin = 0;
-};
+// The closest double-precision hit over all triangles (double_hit.h), ignoring hits at t ~ 0
+// (the triangle the ray starts on).
 DoubleHit brute_force_double(const Scene& scene, const RayRecord& ray);
-// The double-precision test for one triangle; margin and t are filled (hit or not) unless the
-// ray is parallel to it.
-DoubleHit double_test(const Scene& scene, const RayRecord& ray, uint32_t triangle);
 
 }  // namespace kdray::test

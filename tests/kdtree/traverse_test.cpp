@@ -63,7 +63,7 @@ size_t expect_close_to_double_brute_force(const Scene& scene, const KdTree& tree
     if (found.triangle == KD_NO_HIT) {
       ok = !exact.hit || exact.margin < kGraze;
     } else {
-      const test::DoubleHit same = test::double_test(scene, rays[i], found.triangle);
+      const test::DoubleHit same = test::intersect_double(scene, found.triangle, rays[i]);
       const bool t_agrees = std::fabs(same.t - found.t) <= kRelativeT * std::max(1.0, std::fabs(same.t));
       const bool nothing_closer = !exact.hit || exact.t >= found.t - kRelativeT * std::max(1.0, static_cast<double>(std::fabs(found.t)));
       const bool closer_one_grazes = exact.hit && exact.margin < kGraze;
@@ -87,7 +87,7 @@ std::vector<RayRecord> mixed_rays(const Scene& scene, const KdTree& tree, size_t
 }
 
 TEST(KdTraverse, MatchesFloatBruteForceOnGeneratedScenes) {
-  for (const Scene& scene : {test::icosphere(3, {0, 0, 0}, 1), test::box_room(), test::triangle_soup(2000, 4),
+  for (const Scene& scene : {test::icosphere_scene(3, {0, 0, 0}, 1), test::box_room(), test::triangle_soup(2000, 4),
                              test::coplanar_grid(8)}) {
     const KdTree tree = build_kdtree(scene, BuildSettings{});
     const std::vector<RayRecord> rays = mixed_rays(scene, tree, 6000, 21);
@@ -269,7 +269,7 @@ size_t scaled(size_t count) {
 }
 
 TEST(KdTraverse, RaysFromInsideTheIcosphereNeverEscape) {
-  expect_no_escape(test::icosphere(3, {0.1f, -0.2f, 0.05f}, 1.0f), {0.1f, -0.2f, 0.05f}, scaled(1000000));
+  expect_no_escape(test::icosphere_scene(3, {0.1f, -0.2f, 0.05f}, 1.0f), {0.1f, -0.2f, 0.05f}, scaled(1000000));
 }
 
 TEST(KdTraverse, RaysFromInsideTheClosedBunnyNeverEscape) {

@@ -211,7 +211,7 @@ TEST_F(TreeCacheTest, EvictionRemovesTheLeastRecentlyUsedFirstButNeverTheKeptEnt
   };
   std::vector<Made> made;
   for (float size : {1.0f, 2.0f, 3.0f, 4.0f}) {
-    Scene sphere = test::icosphere(2, {0, 0, 0}, size);
+    Scene sphere = test::icosphere_scene(2, {0, 0, 0}, size);
     const CachedTree built = cached_tree(trees, sphere, path("sphere.kdscene"), BuildSettings{});
     made.push_back({built.tree.key, built.entry});
   }

@@ -19,7 +19,7 @@ namespace {
 class KdTreeFile : public test::TempDirTest<> {
  protected:
   void SetUp() override {
-    scene_ = test::icosphere(2, {0, 0, 0}, 1);
+    scene_ = test::icosphere_scene(2, {0, 0, 0}, 1);
     tree_ = build_kdtree(scene_, BuildSettings{});
   }
 
@@ -151,7 +151,7 @@ TEST_F(KdTreeFile, AKeyThatDoesNotMatchTheSettingsIsDamage) {
 }
 
 TEST_F(KdTreeFile, StaleTreeNamesBothHashes) {
-  const Scene other = test::icosphere(2, {0, 0, 0}, 2);
+  const Scene other = test::icosphere_scene(2, {0, 0, 0}, 2);
   try {
     check_tree_matches_scene(tree_, "t.kdtree", other, "other.kdscene");
     FAIL() << "a stale tree was accepted";

@@ -23,7 +23,7 @@ const std::vector<std::string> kTriangleChain = {"tri.kdscene", "tri.kdtree", "t
 class SamplesMake : public test::TempDirTest<> {
  protected:
   void SetUp() override {
-    for (const char* file : {"Makefile", "report.mk", "cornell-box.obj", "cornell-box.mtl"})
+    for (const char* file : {"Makefile", "report.mk", "gallery.mk", "cornell-box.obj", "cornell-box.mtl"})
       fs::copy_file(fs::path(KDRAY_SOURCE_DIR) / "samples" / file, dir_ / file);
     std::ofstream(dir_ / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   }

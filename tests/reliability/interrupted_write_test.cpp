@@ -141,7 +141,7 @@ TEST_F(InterruptedWrite, KdbuildLeavesOldOrNewTree) {
 
 TEST_F(InterruptedWrite, KdrenderLeavesOldOrNewImage) {
   const fs::path scene = dir_ / "cornell.kdscene", tree = dir_ / "cornell.kdtree", target = dir_ / "out.exr";
-  run_ok({tool_path("kdconvert"), "--quiet", std::string(KDRAY_SOURCE_DIR) + "/samples/cornell-box.obj", scene.string()});
+  run_ok({tool_path("kdconvert"), "--quiet", test::cornell_obj(), scene.string()});
   run_ok({tool_path("kdbuild"), "--quiet", scene.string(), tree.string()});
   const std::vector<std::string> render = {tool_path("kdrender"), scene.string(), tree.string(), "--quiet",
                                            "--width", "64", "--height", "64", "--spp", "4", "--seed", "3"};

@@ -110,7 +110,7 @@ TEST(EnvironmentLoad, ACorpusMapLoadsAsLinearRgb) {
 
 TEST(EnvironmentLoad, AMissingOrBadFileIsOneErrorNamingIt) {
   EXPECT_THROW(load_environment("/nonexistent/map.exr"), Error);
-  const std::string path = std::string(KDRAY_SOURCE_DIR) + "/samples/cornell-box.obj";
+  const std::string path = test::cornell_obj();
   try {
     load_environment(path);
     FAIL() << "no error";

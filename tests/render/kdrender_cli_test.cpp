@@ -34,7 +34,7 @@ TEST_F(KdrenderCli, RendersPngAndReportsJsonWithAWarmSecondBuild) {
   nlohmann::json report = nlohmann::json::parse(second.out);
   EXPECT_EQ(report["build_source"], "disk cache");
   EXPECT_EQ(report["spp"], 2);
-  EXPECT_GT(report["rays_per_second"].get<double>(), 0.0);
+  EXPECT_GT(report["mrays_per_s"].get<double>(), 0.0);
   EXPECT_GT(report["samples_per_second"].get<double>(), 0.0);
   for (const char* key : {"load_seconds", "build_seconds", "render_seconds"}) EXPECT_TRUE(report.contains(key)) << key;
   EXPECT_TRUE(fs::exists(path("a.png")));
@@ -98,6 +98,13 @@ TEST_F(KdrenderCli, BadArgumentsExitWithUsageStatus) {
   EXPECT_EQ(kdrender(test::shell_quoted(scene_) + " " + test::shell_quoted(tree_)).exit_code, 2);  // no -o
   EXPECT_EQ(kdrender(cornell(path("bad.tiff"), "")).exit_code, 2);
   EXPECT_FALSE(fs::exists(path("bad.exr")));
+}
+
+TEST_F(KdrenderCli, AovsNeedAnExrOutputOfEitherCase) {
+  EXPECT_EQ(kdrender(cornell(path("aov.png"), "--spp 1 --aov albedo --quiet")).exit_code, 2);
+  test::ToolRun run = kdrender(cornell(path("aov.EXR"), "--spp 1 --aov albedo --quiet"));
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_TRUE(fs::exists(path("aov.EXR")));
 }
 
 TEST_F(KdrenderCli, ListsDevices) {

@@ -41,7 +41,6 @@ inline Camera cornell_camera() {
   camera.vertical_fov_degrees = 39.3077f;
   return camera;
 }
-inline std::string cornell_obj() { return std::string(KDRAY_SOURCE_DIR) + "/samples/cornell-box.obj"; }
 
 // Converts the sample Cornell box and builds its tree with the tools into dir; returns the
 // scene and tree paths.

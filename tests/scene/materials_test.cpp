@@ -22,8 +22,8 @@ const std::string kMaterialsGltf = std::string(KDRAY_SOURCE_DIR) + "/tests/scene
 // Written by the version 2 kdconvert from materials-gltf.gltf (its mapping made the masked and
 // blended materials glass).
 const std::string kVersion2File = std::string(KDRAY_SOURCE_DIR) + "/tests/scene/fixtures/version-2-materials.kdscene";
-// Debian's assimp-testmodels (scripts/install-deps.sh).
-const std::filesystem::path kAssimpModels = "/usr/share/assimp/models/glTF2";
+// Debian's assimp-testmodels (scripts/install-deps.sh), where tests/CMakeLists.txt says.
+const std::filesystem::path kAssimpModels = std::filesystem::path(KDRAY_ASSIMP_MODELS_DIR) / "glTF2";
 
 const Material& named(const Scene& scene, const std::string& name) {
   for (const Material& material : scene.materials)

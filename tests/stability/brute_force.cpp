@@ -9,43 +9,6 @@
 #include <sstream>
 
 namespace kdray::test {
-namespace {
-
-struct D3 {
-  double x, y, z;
-};
-D3 to_double(const Vec3& v) { return {v.x, v.y, v.z}; }
-D3 sub(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-double length(D3 a) { return std::sqrt(dot(a, a)); }
-
-}  // namespace
-
-DoubleHit intersect_double(const Scene& scene, uint32_t triangle, const RayRecord& ray) {
-  const D3 a = to_double(scene.positions[scene.indices[3 * triangle + 0]]);
-  const D3 b = to_double(scene.positions[scene.indices[3 * triangle + 1]]);
-  const D3 c = to_double(scene.positions[scene.indices[3 * triangle + 2]]);
-  const D3 origin{ray.ox, ray.oy, ray.oz}, direction{ray.dx, ray.dy, ray.dz};
-  const D3 e1 = sub(b, a), e2 = sub(c, a);
-  const D3 p = cross(direction, e2);
-  const double determinant = dot(e1, p);
-  DoubleHit hit;
-  // Relative test: the ray's direction is (numerically) in the triangle's plane.
-  if (!(std::abs(determinant) > 1e-12 * length(e1) * length(e2) * length(direction))) return hit;
-  hit.parallel = false;
-  const D3 s = sub(origin, a);
-  const double u = dot(s, p) / determinant;
-  const D3 q = cross(s, e1);
-  const double v = dot(direction, q) / determinant;
-  hit.t = dot(e2, q) / determinant;
-  hit.margin = std::min({u, v, 1.0 - u - v});
-  // |determinant| = |d| |e1 x e2| cos(angle between ray and normal).
-  const double twice_area = length(cross(e1, e2));
-  hit.inverse_cosine = twice_area * length(direction) / std::abs(determinant);
-  hit.uncertainty = 2e-6 * (1.0 + length(s) / std::sqrt(twice_area)) * hit.inverse_cosine;
-  return hit;
-}
 
 std::string describe_ray(const RayRecord& ray) {
   char text[256];
@@ -66,7 +29,7 @@ double scene_magnitude(const Scene& scene) {
 
 double t_tolerance(const RayRecord& ray, double scene_magnitude, double t) {
   const double origin_size = std::max({std::abs(ray.ox), std::abs(ray.oy), std::abs(ray.oz)});
-  const double direction_length = length({ray.dx, ray.dy, ray.dz});
+  const double direction_length = std::sqrt(double(ray.dx) * ray.dx + double(ray.dy) * ray.dy + double(ray.dz) * ray.dz);
   return 4e-6 * (origin_size + scene_magnitude) / direction_length + 4e-7 * std::abs(t);
 }
 

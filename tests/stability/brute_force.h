@@ -8,27 +8,12 @@
 
 #include <kernels/kd_types.h>
 
+#include <double_hit.h>
+
 #include <string>
 #include <vector>
 
 namespace kdray::test {
-
-// One triangle against one ray in double. `margin` is the smallest barycentric coordinate
-// (negative outside); a hit needs margin >= 0 and tmin < t < tmax. `uncertainty` is how far
-// off a float test's margin may be for this ray and triangle: it grows with the origin's
-// distance relative to the triangle's size and as the ray turns parallel to the triangle.
-// Parallel rays (the ray in the triangle's plane) never hit.
-struct DoubleHit {
-  bool parallel = true;
-  double t = 0;
-  double margin = -1;
-  double uncertainty = 0;
-  double inverse_cosine = 1;  // 1 / |cos(angle between ray and normal)|: how ill-conditioned t is
-
-  bool clearly_inside() const { return !parallel && margin > uncertainty; }
-  bool possibly_inside() const { return !parallel && margin >= -uncertainty; }
-};
-DoubleHit intersect_double(const Scene& scene, uint32_t triangle, const RayRecord& ray);
 
 // Checks the tree's hit for `ray` against brute force. Returns "" when they agree, else what
 // is wrong. Agreement: a miss is fine when no triangle is hit clearly (margin above its

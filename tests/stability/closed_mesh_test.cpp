@@ -82,7 +82,7 @@ void expect_no_escapes(const Scene& scene, const Scene& surface, float inner) {
 }  // namespace
 
 TEST(ClosedMesh, IcosphereRaysAtVerticesAndEdgesNeverEscape) {
-  const Scene sphere = kdray::test::make_icosphere(3, 1.0f);
+  const Scene sphere = kdray::test::icosphere_scene(3, {0, 0, 0}, 1.0f);
   ASSERT_EQ(sphere.triangle_count(), 1280u);
   expect_no_escapes(sphere, sphere, 0.5f);
 }

@@ -43,7 +43,7 @@ double log_log_slope(const std::vector<double>& x, const std::vector<double>& y)
 }  // namespace
 
 TEST(Convergence, CornellBoxRelativeMseFallsAsOneOverSpp) {
-  kdray::Scene scene = kdray::import_scene(std::string(KDRAY_SOURCE_DIR) + "/samples/cornell-box.obj", {});
+  kdray::Scene scene = kdray::import_scene(kdray::test::cornell_obj(), {});
   scene.content_hash = kdray::compute_content_hash(scene);
   scene.geometry_hash = kdray::compute_geometry_hash(scene);
   const kdray::KdTree tree = kdray::build_kdtree(scene, kdray::BuildSettings{});

@@ -37,7 +37,7 @@ const Placement kPlacements[] = {
 
 Scene unit_scene() {
   Scene scene = kdray::test::make_grid_box(-1.0f, 1.0f, 4);
-  kdray::test::append_mesh(scene, kdray::test::make_icosphere(2, 0.6f));
+  kdray::test::append_mesh(scene, kdray::test::icosphere_scene(2, {0, 0, 0}, 0.6f));
   return scene;
 }
 

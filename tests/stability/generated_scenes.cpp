@@ -1,7 +1,5 @@
 #include "generated_scenes.h"
 
-#include <icosphere.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -14,14 +12,9 @@
 namespace kdray::test {
 
 Scene make_scene(std::vector<Vec3> positions, std::vector<uint32_t> indices) {
-  Scene scene;
-  scene.positions = std::move(positions);
-  scene.indices = std::move(indices);
-  scene.material_ids.assign(scene.triangle_count(), 0);
-  scene.materials.push_back(Material{});
+  Scene scene = mesh_scene(std::move(positions), std::move(indices));
   scene.cameras.push_back(Camera{});
   scene.content_hash = compute_content_hash(scene);
-  scene.geometry_hash = compute_geometry_hash(scene);
   return scene;
 }
 
@@ -32,11 +25,6 @@ void append_mesh(Scene& scene, const Scene& extra) {
   scene.material_ids.resize(scene.triangle_count(), 0);
   scene.content_hash = compute_content_hash(scene);
   scene.geometry_hash = compute_geometry_hash(scene);
-}
-
-Scene make_icosphere(int subdivisions, float radius) {
-  IcosphereMesh mesh = icosphere_mesh(subdivisions, {0, 0, 0}, radius);
-  return make_scene(std::move(mesh.positions), std::move(mesh.indices));
 }
 
 Scene make_grid_box(float lo, float hi, int cells) {

@@ -5,6 +5,8 @@
 #include <kdray/kdtree.h>
 #include <kdray/scene.h>
 
+#include <icosphere.h>
+
 #include <string>
 #include <vector>
 
@@ -15,9 +17,6 @@ Scene make_scene(std::vector<Vec3> positions, std::vector<uint32_t> indices);
 
 // Triangles of `extra` appended to `scene` (vertices re-indexed), hash recomputed.
 void append_mesh(Scene& scene, const Scene& extra);
-
-// The support library's closed icosphere (icosphere.h) about the origin, as a scene.
-Scene make_icosphere(int subdivisions, float radius);
 
 // A closed axis-aligned box [lo, hi]^3 whose faces are `cells` x `cells` grids of quads (two
 // triangles each), so grid lines give the builder many candidate split planes in the faces.

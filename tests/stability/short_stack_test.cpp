@@ -18,7 +18,7 @@ namespace {
 using kdray::Scene;
 
 // A finely tessellated sphere (5120 triangles): its tree is far deeper than KD_SHORT_STACK_SIZE (8).
-Scene deep_scene_mesh() { return kdray::test::transformed(kdray::test::make_icosphere(4, 1.0f), 30, {0, 30, 0}); }
+Scene deep_scene_mesh() { return kdray::test::transformed(kdray::test::icosphere_scene(4, {0, 0, 0}, 1.0f), 30, {0, 30, 0}); }
 
 constexpr uint32_t kShortStack = 8;
 

@@ -27,7 +27,7 @@ struct HardScene {
 
   HardScene() {
     scene = kdray::test::make_grid_box(-1.0f, 1.0f, 4);
-    kdray::test::append_mesh(scene, kdray::test::make_icosphere(2, 0.6f));
+    kdray::test::append_mesh(scene, kdray::test::icosphere_scene(2, {0, 0, 0}, 0.6f));
     for (float corner : {-3.0f, 3.0f}) {
       const float step = corner < 0 ? 0.01f : -0.01f;
       kdray::test::append_mesh(scene, kdray::test::make_scene({{corner, corner, corner},

@@ -51,4 +51,20 @@ IcosphereMesh icosphere_mesh(int subdivisions, Vec3 centre, float radius) {
   return mesh;
 }
 
+Scene mesh_scene(std::vector<Vec3> positions, std::vector<uint32_t> indices) {
+  Scene scene;
+  scene.positions = std::move(positions);
+  scene.indices = std::move(indices);
+  scene.material_ids.assign(scene.triangle_count(), 0);
+  scene.materials.push_back(Material{});
+  scene.content_hash = compute_content_hash(scene);
+  scene.geometry_hash = compute_geometry_hash(scene);
+  return scene;
+}
+
+Scene icosphere_scene(int subdivisions, Vec3 centre, float radius) {
+  IcosphereMesh mesh = icosphere_mesh(subdivisions, centre, radius);
+  return mesh_scene(std::move(mesh.positions), std::move(mesh.indices));
+}
+
 }  // namespace kdray::test

@@ -17,4 +17,11 @@ struct IcosphereMesh {
 
 IcosphereMesh icosphere_mesh(int subdivisions, Vec3 centre, float radius);
 
+// A scene of these triangles with one default material, its content and geometry hashes
+// computed: ready for build_kdtree and write_scene.
+Scene mesh_scene(std::vector<Vec3> positions, std::vector<uint32_t> indices);
+
+// The icosphere as such a scene.
+Scene icosphere_scene(int subdivisions, Vec3 centre, float radius);
+
 }  // namespace kdray::test

@@ -1,4 +1,4 @@
-// Locating shared corpus files and built tools from tests, and temporary directories for them.
+// Locating shared corpus files, the sample scene and built tools from tests, and temporary directories for them.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -28,6 +28,9 @@ inline bool running_in_ci() {
   } while (0)
 
 inline std::string tool_path(const std::string& tool) { return std::string(KDRAY_TOOLS_DIR) + "/" + tool + "/" + tool; }
+
+// The repository's sample scene, the Cornell box (its .mtl beside it).
+inline std::string cornell_obj() { return std::string(KDRAY_SOURCE_DIR) + "/samples/cornell-box.obj"; }
 
 // A fresh empty directory under the system temp dir, removed by the fixture's owner.
 inline std::filesystem::path make_temp_dir(const std::string& stem) {

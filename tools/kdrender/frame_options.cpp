@@ -1,12 +1,12 @@
 #include "frame_options.h"
 
 #include <kdray/image_io.h>
+#include <kdray/util.h>
 
 #include <device_option.h>
 
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <sstream>
 
 namespace kdrender {
@@ -44,7 +44,7 @@ void apply_aovs(const FrameOptions& o, kdray::RenderSettings& settings) {
     else throw UsageError("--aov: unknown layer '" + name + "' (albedo, normal, depth)");
   }
   bool any_aov = settings.aov_albedo || settings.aov_normal || settings.aov_depth;
-  if (any_aov && std::filesystem::path(o.output).extension() != ".exr") throw UsageError("--aov needs an .exr output");
+  if (any_aov && kdray::lowercase_extension(o.output) != ".exr") throw UsageError("--aov needs an .exr output");
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "render_frame.h"
 
 #include <kdray/image_io.h>
+#include <kdray/util.h>
 
 #include <tool_main.h>
 
@@ -67,7 +68,7 @@ nlohmann::json frame_json(const Frame& frame, const FrameResult& result) {
           {"write_seconds", result.write_seconds},
           {"samples_per_second", rate(pixel_samples, stats.render_seconds)},
           {"rays", stats.rays},
-          {"rays_per_second", rate(double(stats.rays), stats.render_seconds)},
+          {"mrays_per_s", rate(double(stats.rays), stats.render_seconds) * 1e-6},
           {"mean_radiance", film.mean_radiance()},
           {"nonfinite_values", stats.nonfinite_values}};
   if (stats.device == kdray::kHostDevice) report["threads"] = stats.threads;
@@ -114,7 +115,7 @@ bool frame_already_written(const Frame& frame, const kdray::Scene& scene, uint64
   std::error_code error;
   if (!std::filesystem::is_regular_file(frame.output, error)) return false;
   const kdray::RenderSettings& s = frame.settings;
-  if (std::filesystem::path(frame.output).extension() != ".exr") {
+  if (kdray::lowercase_extension(frame.output) != ".exr") {
     auto size = kdray::read_image_size(frame.output);
     return size && size->first == s.width && size->second == s.height;
   }

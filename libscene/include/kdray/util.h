@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include <unistd.h>
@@ -19,6 +20,19 @@ inline std::string hash_hex(uint64_t hash) {
   char text[17];
   std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
   return text;
+}
+
+// The hash that hash_hex spelled, or nothing when `text` is not exactly 16 lower-case hex
+// digits: the one parser of hashes in file names and metadata, as strict as the writer.
+inline std::optional<uint64_t> parse_hash_hex(const std::string& text) {
+  if (text.size() != 16) return std::nullopt;
+  uint64_t hash = 0;
+  for (const char c : text) {
+    if (c >= '0' && c <= '9') hash = hash << 4 | uint64_t(c - '0');
+    else if (c >= 'a' && c <= 'f') hash = hash << 4 | uint64_t(c - 'a' + 10);
+    else return std::nullopt;
+  }
+  return hash;
 }
 
 // The extension of `path` with its dot, lower-cased: ".obj" for "Model.OBJ", "" when none.

@@ -97,32 +97,27 @@ KD_HOT_INLINE int kd_ray_setup(KdRay* ray, float ox, float oy, float oz, float d
   return finite && ray->dir[kz] != 0.0f && tmin < tmax;
 }
 
-/* One slab of kd_ray_box: narrows [*lo, *hi] to where the ray is between the planes at bmin
- * and bmax on axis k; 0 when the ray runs parallel to them outside. */
-KD_INLINE int kd_ray_slab(const KdRay* ray, int k, float bmin, float bmax, float* lo, float* hi) {
-  if (ray->dir[k] == 0.0f) return ray->org[k] >= bmin && ray->org[k] <= bmax;
-  float t0 = (bmin - ray->org[k]) * ray->inv_dir[k];
-  float t1 = (bmax - ray->org[k]) * ray->inv_dir[k];
-  float entry = kd_minf(t0, t1);
-  float exit = kd_maxf(t0, t1) * (1.0f + 4.0f * 5.96046448e-08f);
-  *lo = kd_maxf(*lo, entry);
-  *hi = kd_minf(*hi, exit);
-  return 1;
-}
-
 /* Slab test against the closed box [bmin, bmax]; narrows [*t_near, *t_far] and returns 0 if it
  * becomes empty. A zero direction component keeps the whole slab when the origin lies in it,
  * boundary included (the signed finite reciprocal alone would make a ray with d = -0 on the
  * lower face leave at once). The far distance is widened by a few ulps (pbrt's 1 + 2*gamma(3))
- * so rounding never drops a box the ray really touches. The three slabs are written out, not a
- * loop: PoCL kept the loop and its branches. */
+ * so rounding never drops a box the ray really touches. */
 KD_INLINE int kd_ray_box(const KdRay* ray, const float bmin[3], const float bmax[3], float* t_near,
                          float* t_far) {
   float lo = *t_near;
   float hi = *t_far;
-  if (!(kd_ray_slab(ray, 0, bmin[0], bmax[0], &lo, &hi) && kd_ray_slab(ray, 1, bmin[1], bmax[1], &lo, &hi) &&
-        kd_ray_slab(ray, 2, bmin[2], bmax[2], &lo, &hi)))
-    return 0;
+  for (int k = 0; k < 3; ++k) {
+    if (ray->dir[k] == 0.0f) {
+      if (ray->org[k] < bmin[k] || ray->org[k] > bmax[k]) return 0;
+      continue;
+    }
+    float t0 = (bmin[k] - ray->org[k]) * ray->inv_dir[k];
+    float t1 = (bmax[k] - ray->org[k]) * ray->inv_dir[k];
+    float entry = kd_minf(t0, t1);
+    float exit = kd_maxf(t0, t1) * (1.0f + 4.0f * 5.96046448e-08f);
+    lo = kd_maxf(lo, entry);
+    hi = kd_minf(hi, exit);
+  }
   *t_near = lo;
   *t_far = hi;
   return lo <= hi;

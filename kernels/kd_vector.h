@@ -26,6 +26,7 @@ KD_INLINE float3 kd_splat3(float s) { return (float3)(s); }
 #include <cmath>
 
 typedef unsigned int uint;
+typedef unsigned long ulong; /* 64 bits, as OpenCL's, on the LP64 hosts kdray builds on */
 
 using std::copysign;
 using std::fabs;

@@ -10,12 +10,10 @@
 
 /* Weights of a light sample and of a BSDF sample that found a light, given both strategies'
  * solid-angle densities. KD_MIS_OFF (a test switch) keeps the estimator unbiased without MIS:
- * light samples count in full, BSDF samples only where light sampling cannot reach. The C++ build
- * (KD_ALL_FEATURES) reads the switch from params (PT_FEATURE_MIS_OFF). */
-#if defined(KD_ALL_FEATURES)
-#define PT_MIS_OFF(params) (((params)->features & PT_FEATURE_MIS_OFF) != 0u)
-#elif defined(KD_MIS_OFF)
-#define PT_MIS_OFF(params) 1
+ * light samples count in full, BSDF samples only where light sampling cannot reach. Compiled in,
+ * it is asked of the scene's bits as a feature is (PT_USES: always on in an OpenCL build). */
+#ifdef KD_MIS_OFF
+#define PT_MIS_OFF(params) PT_USES(params, PT_FEATURE_MIS_OFF)
 #else
 #define PT_MIS_OFF(params) 0
 #endif

@@ -11,17 +11,12 @@
 __kernel void pt_render(PT_SCENE_ARGS, __global long* film, __global uint* next_pixel, __global ulong* stats) {
   PtSceneData scene = PT_MAKE_SCENE();
   uint pixel_count = params->width * params->height;
-  uint channels = params->film_channels;
   ulong rays = 0;
   uint nonfinite = 0;
   for (;;) {
     uint pixel = atomic_inc(next_pixel);
     if (pixel >= pixel_count) break;
-    long sums[PT_MAX_FILM_CHANNELS];
-    for (uint c = 0; c < PT_MAX_FILM_CHANNELS; ++c) sums[c] = 0;
-    for (uint i = 0; i < params->sample_count; ++i)
-      rays += pt_render_sample(&scene, params, pixel, params->sample_offset + i, sums, &nonfinite);
-    for (uint c = 0; c < channels; ++c) film[(size_t)pixel * channels + c] += sums[c];
+    rays += pt_render_pixel(&scene, params, pixel, film, &nonfinite);
   }
   pt_add_stats(stats, rays, nonfinite);
 }

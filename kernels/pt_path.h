@@ -448,4 +448,18 @@ inline uint pt_render_sample(const PtSceneData* scene, KD_GLOBAL const PtRenderP
   return rays;
 }
 
+/* Traces samples sample_offset .. sample_offset + sample_count - 1 of `pixel` and adds their sums
+ * to the pixel's film channels; returns the number of rays traced. The per-pixel work of the
+ * megakernel and of the host renderer (librender/src/render_host.cpp). */
+inline ulong pt_render_pixel(const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params, uint pixel,
+                             KD_GLOBAL long* film, uint* nonfinite) {
+  long sums[PT_MAX_FILM_CHANNELS];
+  for (uint c = 0; c < PT_MAX_FILM_CHANNELS; ++c) sums[c] = 0;
+  ulong rays = 0;
+  for (uint i = 0; i < params->sample_count; ++i)
+    rays += pt_render_sample(scene, params, pixel, params->sample_offset + i, sums, nonfinite);
+  for (uint c = 0; c < params->film_channels; ++c) film[(size_t)pixel * params->film_channels + c] += sums[c];
+  return rays;
+}
+
 #endif /* PT_PATH_H */

@@ -6,8 +6,8 @@
 // feature in (KD_ALL_FEATURES) rather than in up to 2^14 variants: each KD_FEATURE_* part either
 // acts only on data the scene has (a material's type, a texture index >= 0, a light count) or
 // asks the scene's feature bits (PT_USES, kernels/pt_types.h), so where a feature is absent it
-// does what the kernel built without it does, operation for operation. The MIS switch is such a
-// bit too (PT_FEATURE_MIS_OFF). tests/render/cpu_integrator_*_test.cpp check the films against
+// does what the kernel built without it does, operation for operation. The MIS switch (KD_MIS_OFF)
+// is compiled in and read from the bits the same way. tests/render/cpu_integrator_*_test.cpp check the films against
 // kernels of different feature sets bit for bit.
 //
 // Determinism. One task sums all of a pixel's samples of a pass, in sample order, and the sums
@@ -28,6 +28,7 @@
 #define KD_FEATURE_NORMALS
 #define KD_FEATURE_ENVIRONMENT
 #define KD_FEATURE_PUNCTUAL
+#define KD_MIS_OFF  // a switch, asked of the scene's bits as the features are
 #define KD_EMPTY_LEAF_NODES  // as the megakernel: the same hits, fewer node fetches
 
 #include "render_internal.h"
@@ -78,18 +79,13 @@ class HostRender : public RenderWorker {
     params.sample_offset = first;
     params.sample_count = count;
     const PtSceneData scene = make_scene(arrays_, &params);
-    const uint32_t channels = params.film_channels;
     arena_.execute([&] {
       tbb::parallel_for(tbb::blocked_range<uint32_t>(0, params.width * params.height, kPixelsPerTask),
                         [&](const tbb::blocked_range<uint32_t>& pixels) {
                           uint64_t rays = 0;
                           uint nonfinite = 0;
-                          for (uint32_t pixel = pixels.begin(); pixel != pixels.end(); ++pixel) {
-                            long sums[PT_MAX_FILM_CHANNELS] = {0};
-                            for (uint32_t i = 0; i < count; ++i)
-                              rays += pt_render_sample(&scene, &params, pixel, first + i, sums, &nonfinite);
-                            for (uint32_t c = 0; c < channels; ++c) film_[size_t(pixel) * channels + c] += sums[c];
-                          }
+                          for (uint32_t pixel = pixels.begin(); pixel != pixels.end(); ++pixel)
+                            rays += pt_render_pixel(&scene, &params, pixel, film_.data(), &nonfinite);
                           rays_ += rays;
                           nonfinite_ += nonfinite;
                         });

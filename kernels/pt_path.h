@@ -69,7 +69,8 @@ typedef struct PtPath {
   float depth;
   float bsdf_pdf;                    /* pdf of the last BSDF sample, 0 after a delta lobe */
   kd_u32 pixel, sample, bounce;
-  kd_i32 alive, shadow_pending, pad;
+  kd_u32 sample_hash;                /* pt_sample_hash of (pixel, sample): shared by its values */
+  kd_i32 alive, shadow_pending;
 } PtPath;
 KD_STATIC_ASSERT(sizeof(PtPath) == PT_PATH_BYTES, "PT_PATH_BYTES is the size of PtPath");
 
@@ -85,14 +86,15 @@ inline RayRecord pt_ray(float3 origin, float3 direction, float tmax) {
 /* Sample value `dim` (PT_DIM_*, kernels/pt_rng.h) of the path's current bounce, or both values
  * of the pair starting at even `dim`. */
 inline float pt_path_sample(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
-  return pt_sample(params->sampler, params->seed, path->pixel, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim);
+  return pt_bits_to_unit(
+      pt_hashed_bits(params->sampler, path->sample_hash, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim));
 }
-inline float2 pt_sample2(KD_GLOBAL const PtRenderParams* params, uint pixel, uint sample, uint dimension) {
-  PtBits2 bits = pt_sample_bits2(params->sampler, params->seed, pixel, sample, dimension);
+inline float2 pt_sample2(KD_GLOBAL const PtRenderParams* params, uint sample_hash, uint sample, uint dimension) {
+  PtBits2 bits = pt_hashed_bits2(params->sampler, sample_hash, sample, dimension);
   return KD_FLOAT2(pt_bits_to_unit(bits.x), pt_bits_to_unit(bits.y));
 }
 inline float2 pt_path_sample2(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
-  return pt_sample2(params, path->pixel, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim);
+  return pt_sample2(params, path->sample_hash, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim);
 }
 
 inline RayRecord pt_path_ray(const PtPath* path) { return pt_ray(path->origin, path->direction, INFINITY); }
@@ -130,7 +132,8 @@ inline int pt_path_occluded(const PtSceneData* scene, const PtPath* path, KD_GLO
 
 inline void pt_path_begin(PtPath* path, KD_GLOBAL const PtRenderParams* params, uint pixel, uint sample) {
   uint x = pixel % params->width, y = pixel / params->width;
-  float2 jitter = pt_sample2(params, pixel, sample, PT_DIM_CAMERA_X);
+  path->sample_hash = pt_sample_hash(params->sampler, params->seed, pixel, sample);
+  float2 jitter = pt_sample2(params, path->sample_hash, sample, PT_DIM_CAMERA_X);
   float sx = 2.0f * ((float)x + jitter.x) / (float)params->width - 1.0f;
   float sy = 1.0f - 2.0f * ((float)y + jitter.y) / (float)params->height;
   float3 forward = vload3(0, params->cam_forward), right = vload3(0, params->cam_right);

@@ -60,13 +60,6 @@ KD_INLINE kd_u32 pt_hash32(kd_u32 x) {
   return x;
 }
 
-KD_INLINE kd_u32 pt_random_bits(kd_u32 seed, kd_u32 pixel, kd_u32 sample, kd_u32 dimension) {
-  kd_u32 h = pt_hash32(seed ^ 0x9e3779b9u);
-  h = pt_hash32(h ^ pixel);
-  h = pt_hash32(h ^ sample);
-  return pt_hash32(h ^ dimension);
-}
-
 KD_INLINE kd_u32 pt_reverse_bits(kd_u32 x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
@@ -107,10 +100,16 @@ KD_INLINE kd_u32 pt_sobol_reversed(kd_u32 index, kd_u32 dimension) {
   return index;
 }
 
-/* The seeds of one dimension pair of one pixel: the index shuffle and the two coordinates' scrambles. */
-KD_INLINE kd_u32 pt_pair_seed(kd_u32 seed, kd_u32 pixel, kd_u32 pair) {
-  return pt_hash32(pt_hash32(pt_hash32(seed ^ 0x5851f42du) ^ pixel) ^ pair);
+/* The part of a value's hashes that depends on the sample alone: for sobol on (seed, pixel),
+ * for independent on (seed, pixel, index). A path computes it once (PtPath.sample_hash) rather
+ * than once per value; pt_hashed_bits then gives the same bits as pt_sample_bits. */
+KD_INLINE kd_u32 pt_sample_hash(kd_u32 sampler, kd_u32 seed, kd_u32 pixel, kd_u32 index) {
+  if (sampler == PT_SAMPLER_INDEPENDENT) return pt_hash32(pt_hash32(pt_hash32(seed ^ 0x9e3779b9u) ^ pixel) ^ index);
+  return pt_hash32(pt_hash32(seed ^ 0x5851f42du) ^ pixel);
 }
+
+/* The seeds of one dimension pair of one pixel: the index shuffle and the two coordinates' scrambles. */
+KD_INLINE kd_u32 pt_pair_seed(kd_u32 sample_hash, kd_u32 pair) { return pt_hash32(sample_hash ^ pair); }
 KD_INLINE kd_u32 pt_shuffled_index(kd_u32 pair_seed, kd_u32 index) {
   return pt_owen_scramble(index, pt_hash32(pair_seed ^ 0x68e31da4u));
 }
@@ -119,29 +118,37 @@ KD_INLINE kd_u32 pt_scrambled_sobol(kd_u32 pair_seed, kd_u32 shuffled, kd_u32 c)
   return pt_reverse_bits(pt_laine_karras(pt_sobol_reversed(shuffled, c), pt_hash32(pair_seed ^ (0xb5297a4du + c))));
 }
 
-KD_INLINE kd_u32 pt_sample_bits(kd_u32 sampler, kd_u32 seed, kd_u32 pixel, kd_u32 index, kd_u32 dimension) {
-  if (sampler == PT_SAMPLER_INDEPENDENT) return pt_random_bits(seed, pixel, index, dimension);
-  kd_u32 pair_seed = pt_pair_seed(seed, pixel, dimension >> 1);
+KD_INLINE kd_u32 pt_hashed_bits(kd_u32 sampler, kd_u32 sample_hash, kd_u32 index, kd_u32 dimension) {
+  if (sampler == PT_SAMPLER_INDEPENDENT) return pt_hash32(sample_hash ^ dimension);
+  kd_u32 pair_seed = pt_pair_seed(sample_hash, dimension >> 1);
   return pt_scrambled_sobol(pair_seed, pt_shuffled_index(pair_seed, index), dimension & 1u);
 }
 
-/* Both dimensions of the pair starting at even `dimension`, the bits pt_sample_bits gives, sharing
+/* Both dimensions of the pair starting at even `dimension`, the bits pt_hashed_bits gives, sharing
  * the seeds and the shuffle. */
 typedef struct PtBits2 {
   kd_u32 x, y;
 } PtBits2;
-KD_INLINE PtBits2 pt_sample_bits2(kd_u32 sampler, kd_u32 seed, kd_u32 pixel, kd_u32 index, kd_u32 dimension) {
+KD_INLINE PtBits2 pt_hashed_bits2(kd_u32 sampler, kd_u32 sample_hash, kd_u32 index, kd_u32 dimension) {
   PtBits2 bits;
   if (sampler == PT_SAMPLER_INDEPENDENT) {
-    bits.x = pt_random_bits(seed, pixel, index, dimension);
-    bits.y = pt_random_bits(seed, pixel, index, dimension + 1u);
+    bits.x = pt_hash32(sample_hash ^ dimension);
+    bits.y = pt_hash32(sample_hash ^ (dimension + 1u));
     return bits;
   }
-  kd_u32 pair_seed = pt_pair_seed(seed, pixel, dimension >> 1);
+  kd_u32 pair_seed = pt_pair_seed(sample_hash, dimension >> 1);
   kd_u32 shuffled = pt_shuffled_index(pair_seed, index);
   bits.x = pt_scrambled_sobol(pair_seed, shuffled, 0u);
   bits.y = pt_scrambled_sobol(pair_seed, shuffled, 1u);
   return bits;
+}
+
+/* The sampler's values by their coordinates. */
+KD_INLINE kd_u32 pt_sample_bits(kd_u32 sampler, kd_u32 seed, kd_u32 pixel, kd_u32 index, kd_u32 dimension) {
+  return pt_hashed_bits(sampler, pt_sample_hash(sampler, seed, pixel, index), index, dimension);
+}
+KD_INLINE PtBits2 pt_sample_bits2(kd_u32 sampler, kd_u32 seed, kd_u32 pixel, kd_u32 index, kd_u32 dimension) {
+  return pt_hashed_bits2(sampler, pt_sample_hash(sampler, seed, pixel, index), index, dimension);
 }
 
 /* Uniform in [0, 1): the top 24 bits, exactly representable as float. */

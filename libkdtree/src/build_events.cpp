@@ -5,13 +5,13 @@
 // depend on the thread count.
 #include <kdray/error.h>
 #include <kdray/kdtree.h>
+#include <kdray/threads.h>
 
 #include "build_common.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -387,9 +387,8 @@ KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const Bui
   };
   detail::RootWork root = detail::prepare_root(scene);
   lap(timings.prepare);
-  tbb::task_arena arena(control.threads == 0 ? tbb::task_arena::automatic : static_cast<int>(control.threads));
   detail::Subtree built;
-  arena.execute([&] {
+  run_with_threads(control.threads, [&] {
     detail::NodeWork work;
     work.voxel = root.voxel;
     work.triangles = std::move(root.triangles);

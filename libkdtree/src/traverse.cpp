@@ -1,13 +1,13 @@
 #include <kdray/traverse.h>
 
+#include <kdray/threads.h>
+
 #include "traversal_variant.h"
 
 #include <kernels/kd_traverse.h>
 
 #include <tbb/blocked_range.h>
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <sys/mman.h>
 
@@ -51,8 +51,7 @@ void trace_in_chunks(const detail::TraversalArrays& arrays, const std::vector<Ra
                      std::vector<Result>& out, unsigned threads, const Trace& trace) {
   constexpr size_t kChunk = 1024;  // rays per task: amortises scheduling, keeps load balanced
   out.resize(rays.size());
-  tbb::task_arena arena(threads == 0 ? tbb::task_arena::automatic : static_cast<int>(threads));
-  arena.execute([&] {
+  run_with_threads(threads, [&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), kChunk), [&](const tbb::blocked_range<size_t>& range) {
       trace(arrays, rays.data() + range.begin(), out.data() + range.begin(), range.size());
     });

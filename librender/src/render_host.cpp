@@ -33,13 +33,14 @@
 
 #include "render_internal.h"
 
+#include <kdray/threads.h>
+
 #include <kernels/kd_types.h>
 #include <kernels/kd_vector.h>
 #include <kernels/pt_types.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <atomic>
 #include <chrono>
@@ -69,17 +70,17 @@ class HostRender : public RenderWorker {
  public:
   HostRender(SceneArrays arrays, const PtRenderParams& params, unsigned threads)
       : arrays_(std::move(arrays)), params_(params),
-        arena_(threads == 0 ? tbb::task_arena::automatic : static_cast<int>(threads)),
+        threads_(thread_count(threads)),
         film_(size_t(params.width) * params.height * params.film_channels, 0) {}
 
-  unsigned threads() { return static_cast<unsigned>(arena_.max_concurrency()); }
+  unsigned threads() const { return threads_; }
 
   void pass(uint32_t first, uint32_t count) override {
     PtRenderParams params = params_;
     params.sample_offset = first;
     params.sample_count = count;
     const PtSceneData scene = make_scene(arrays_, &params);
-    arena_.execute([&] {
+    run_with_threads(threads_, [&] {
       tbb::parallel_for(tbb::blocked_range<uint32_t>(0, params.width * params.height, kPixelsPerTask),
                         [&](const tbb::blocked_range<uint32_t>& pixels) {
                           uint64_t rays = 0;
@@ -101,7 +102,7 @@ class HostRender : public RenderWorker {
  private:
   const SceneArrays arrays_;
   const PtRenderParams params_;
-  tbb::task_arena arena_;
+  const unsigned threads_;
   std::vector<int64_t> film_;
   std::atomic<uint64_t> rays_{0}, nonfinite_{0};
 };

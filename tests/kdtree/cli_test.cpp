@@ -6,6 +6,7 @@
 #include <kdray/ray_files.h>
 #include <kdray/ray_sets.h>
 #include <kdray/scene_file.h>
+#include <kdray/threads.h>
 #include <kdray/traverse.h>
 
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 #include <test_corpus.h>
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <filesystem>
 #include <fstream>
@@ -119,6 +121,22 @@ TEST_F(KdCli, KdtraceOnOpenClWritesTheCpuHits) {
     EXPECT_GT(report.at("mrays_per_s").get<double>(), 0.0);
     EXPECT_EQ(slurp(path("cpu.bin")), slurp(path("opencl.bin"))) << "stack " << stack;
   }
+}
+
+// More threads than the machine has are taken, as pbrt's and Cycles' options take them: oneTBB
+// alone would cap them at the hardware's count and warn on stderr.
+TEST_F(KdCli, ThreadCountsAboveTheHardwaresAreTakenWithoutAWarning) {
+  const std::string threads = " --threads " + std::to_string(thread_count(0) + 3);
+  const ToolRun build = run("kdbuild", path("room.kdscene") + " " + path("room.kdtree") + threads + " --quiet");
+  ASSERT_EQ(build.exit_code, 0) << build.err;
+  EXPECT_EQ(build.err, "");
+  const ToolRun trace = run("kdtrace", path("room.kdscene") + " " + path("room.kdtree") +
+                                           " --generate random --count 20000 --quiet" + threads);
+  ASSERT_EQ(trace.exit_code, 0) << trace.err;
+  EXPECT_EQ(trace.err, "");
+  unsigned seen = 0;
+  run_with_threads(thread_count(0) + 3, [&] { seen = static_cast<unsigned>(tbb::this_task_arena::max_concurrency()); });
+  EXPECT_EQ(seen, thread_count(0) + 3);
 }
 
 TEST_F(KdCli, KdinfoDescribesTreesAndSaysWhetherTheyMatchAScene) {

@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -299,9 +300,13 @@ class EventBuilder {
                    fresh_to_right[axis], kept_left, kept_right, left.events[axis], right.events[axis]);
     };
     if (n >= kParallelTriangles) {
-      tbb::parallel_for(0, 3, [&](int axis) {
-        EventArray kept_left, kept_right;
-        split_axis(axis, kept_left, kept_right);
+      // Isolated: while it waits for the axes, this thread must not take up another node's
+      // build, whose divide would reuse the scratch arrays the axes are still reading.
+      tbb::this_task_arena::isolate([&] {
+        tbb::parallel_for(0, 3, [&](int axis) {
+          EventArray kept_left, kept_right;
+          split_axis(axis, kept_left, kept_right);
+        });
       });
     } else {
       thread_local EventArray kept_left, kept_right;

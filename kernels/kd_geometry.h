@@ -126,19 +126,20 @@ KD_INLINE int kd_ray_box(const KdRay* ray, const float bmin[3], const float bmax
 /* Watertight ray/triangle test against the whole line of the ray. Returns 1 when the line
  * passes through the triangle (a, b, c) and writes its t and the barycentrics u (of b) and
  * v (of c); the caller decides which t it accepts. Triangles seen edge-on (determinant 0) are
- * missed from both sides. */
-KD_HOT_INLINE int kd_ray_triangle_line(const KdRay* ray, const float a[3], const float b[3], const float c[3],
-                                       float* t_out, float* u_out, float* v_out) {
+ * missed from both sides. The corners are read where they lie (the kernels: the gathered
+ * vertices in global memory), in the ray's axis order: copied into local arrays first, they
+ * were stored to the stack and read back by index, at a dozen instructions per test. */
+KD_HOT_INLINE int kd_ray_triangle_line(const KdRay* ray, KD_GLOBAL const float* a, KD_GLOBAL const float* b,
+                                       KD_GLOBAL const float* c, float* t_out, float* u_out, float* v_out) {
   const int kx = ray->kx, ky = ray->ky, kz = ray->kz;
-  const float A[3] = {a[0] - ray->org[0], a[1] - ray->org[1], a[2] - ray->org[2]};
-  const float B[3] = {b[0] - ray->org[0], b[1] - ray->org[1], b[2] - ray->org[2]};
-  const float C[3] = {c[0] - ray->org[0], c[1] - ray->org[1], c[2] - ray->org[2]};
-  const float ax = A[kx] - ray->sx * A[kz];
-  const float ay = A[ky] - ray->sy * A[kz];
-  const float bx = B[kx] - ray->sx * B[kz];
-  const float by = B[ky] - ray->sy * B[kz];
-  const float cx = C[kx] - ray->sx * C[kz];
-  const float cy = C[ky] - ray->sy * C[kz];
+  const float ox = ray->org[kx], oy = ray->org[ky], oz = ray->org[kz];
+  const float Az = a[kz] - oz, Bz = b[kz] - oz, Cz = c[kz] - oz;
+  const float ax = (a[kx] - ox) - ray->sx * Az;
+  const float ay = (a[ky] - oy) - ray->sy * Az;
+  const float bx = (b[kx] - ox) - ray->sx * Bz;
+  const float by = (b[ky] - oy) - ray->sy * Bz;
+  const float cx = (c[kx] - ox) - ray->sx * Cz;
+  const float cy = (c[ky] - oy) - ray->sy * Cz;
   float U = cx * by - cy * bx;
   float V = ax * cy - ay * cx;
   float W = bx * ay - by * ax;
@@ -152,9 +153,9 @@ KD_HOT_INLINE int kd_ray_triangle_line(const KdRay* ray, const float a[3], const
   if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return 0;
   const float det = U + V + W;
   if (det == 0.0f) return 0;
-  const float az = ray->sz * A[kz];
-  const float bz = ray->sz * B[kz];
-  const float cz = ray->sz * C[kz];
+  const float az = ray->sz * Az;
+  const float bz = ray->sz * Bz;
+  const float cz = ray->sz * Cz;
   const float T = U * az + V * bz + W * cz;
   const float inv_det = 1.0f / det;
   *t_out = T * inv_det;
@@ -164,8 +165,8 @@ KD_HOT_INLINE int kd_ray_triangle_line(const KdRay* ray, const float a[3], const
 }
 
 /* The same test for ray->tmin < t < t_max. */
-KD_INLINE int kd_ray_triangle(const KdRay* ray, const float a[3], const float b[3], const float c[3],
-                              float t_max, float* t_out, float* u_out, float* v_out) {
+KD_INLINE int kd_ray_triangle(const KdRay* ray, KD_GLOBAL const float* a, KD_GLOBAL const float* b,
+                              KD_GLOBAL const float* c, float t_max, float* t_out, float* u_out, float* v_out) {
   float t, u, v;
   if (!kd_ray_triangle_line(ray, a, b, c, &t, &u, &v) || !(t > ray->tmin && t < t_max)) return 0;
   *t_out = t;

@@ -136,12 +136,6 @@ typedef struct KdStackEntry {
   float t_min, t_max;
 } KdStackEntry;
 
-KD_INLINE void kd_load_corner(KD_GLOBAL const float* triangle, kd_u32 corner, float out[3]) {
-  out[0] = triangle[3u * corner + 0u];
-  out[1] = triangle[3u * corner + 1u];
-  out[2] = triangle[3u * corner + 2u];
-}
-
 /* A hit at t by `triangle` replaces `best` when it is closer, or as close and of a smaller
  * triangle index: the closest hit is then the smallest (t, triangle) pair, whatever order the
  * leaves are visited in and whichever leaf holds which triangle. best->t starts as the ray's
@@ -161,12 +155,9 @@ KD_HOT_INLINE int kd_intersect_leaf(const KdSceneView* scene, const KdRay* ray, 
   for (kd_u32 i = 0; i < count; ++i) {
     const kd_u32 triangle = scene->leaf_triangles[first + i];
     KD_GLOBAL const float* corners = scene->triangle_vertices + KD_TRIANGLE_FLOATS * triangle;
-    float a[3], b[3], c[3];
-    kd_load_corner(corners, 0u, a);
-    kd_load_corner(corners, 1u, b);
-    kd_load_corner(corners, 2u, c);
     float t, u, v;
-    if (kd_ray_triangle_line(ray, a, b, c, &t, &u, &v) && t > ray->tmin && kd_hit_precedes(t, triangle, hit)) {
+    if (kd_ray_triangle_line(ray, corners, corners + 3, corners + 6, &t, &u, &v) && t > ray->tmin &&
+        kd_hit_precedes(t, triangle, hit)) {
       hit->t = t;
       hit->triangle = triangle;
       hit->u = u;

@@ -83,15 +83,16 @@ inline RayRecord pt_ray(float3 origin, float3 direction, float tmax) {
   RayRecord ray = {origin.x, origin.y, origin.z, direction.x, direction.y, direction.z, 0.0f, tmax};
   return ray;
 }
+/* Both values of the sample's dimension pair starting at even `dimension` (kernels/pt_rng.h). */
+inline float2 pt_sample2(KD_GLOBAL const PtRenderParams* params, uint sample_hash, uint sample, uint dimension) {
+  PtBits2 bits = pt_hashed_bits2(params->sampler, sample_hash, sample, dimension);
+  return KD_FLOAT2(pt_bits_to_unit(bits.x), pt_bits_to_unit(bits.y));
+}
 /* Sample value `dim` (PT_DIM_*, kernels/pt_rng.h) of the path's current bounce, or both values
  * of the pair starting at even `dim`. */
 inline float pt_path_sample(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
   return pt_bits_to_unit(
       pt_hashed_bits(params->sampler, path->sample_hash, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim));
-}
-inline float2 pt_sample2(KD_GLOBAL const PtRenderParams* params, uint sample_hash, uint sample, uint dimension) {
-  PtBits2 bits = pt_hashed_bits2(params->sampler, sample_hash, sample, dimension);
-  return KD_FLOAT2(pt_bits_to_unit(bits.x), pt_bits_to_unit(bits.y));
 }
 inline float2 pt_path_sample2(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
   return pt_sample2(params, path->sample_hash, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim);

@@ -17,7 +17,8 @@
  * density, d^2 / (A cos), varies across the triangle by a few per cent at most, so it is nearly
  * as good and costs less than the solid angle's arctangent and the spherical construction. The
  * lower bound was chosen by error x cost on the Cornell box (BENCHMARKS.md, "traversal setup
- * and light-sampling cost"): 0.05 sr gave 7% fewer kernel instructions for 1.3% more error than pbrt-v4's 3e-4. */
+ * and light-sampling cost"): 0.05 sr gave 7% fewer kernel instructions for 1.3% more error
+ * than pbrt-v4's 3e-4. */
 #define PT_MIN_SPHERICAL_SOLID_ANGLE 0.05f
 #define PT_TAN_HALF_MIN_SPHERICAL 0.0250052096f /* tan(PT_MIN_SPHERICAL_SOLID_ANGLE / 2) */
 #define PT_MAX_SPHERICAL_SOLID_ANGLE 6.22f

@@ -7,8 +7,8 @@
 // acts only on data the scene has (a material's type, a texture index >= 0, a light count) or
 // asks the scene's feature bits (PT_USES, kernels/pt_types.h), so where a feature is absent it
 // does what the kernel built without it does, operation for operation. The MIS switch (KD_MIS_OFF)
-// is compiled in and read from the bits the same way. tests/render/cpu_integrator_*_test.cpp check the films against
-// kernels of different feature sets bit for bit.
+// is compiled in and read from the bits the same way. tests/render/cpu_integrator_*_test.cpp
+// check the films against kernels of different feature sets bit for bit.
 //
 // Determinism. One task sums all of a pixel's samples of a pass, in sample order, and the sums
 // are fixed-point integers, so the film depends neither on the thread count nor on the passes.

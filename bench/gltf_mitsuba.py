@@ -88,7 +88,7 @@ def main():
         scene[f"mesh{index}"] = mesh
     light = gltf_scene.POINT_LIGHT
     scene["lamp"] = {"type": "point", "position": list(light["position"]),
-                     "intensity": {"type": "rgb", "value": [c * light["intensity"] for c in light["color"]]}}
+                     "intensity": {"type": "rgb", "value": [c * light["watts_per_sr"] for c in light["color"]]}}
     camera = gltf_scene.CAMERA
     scene["sensor"] = {
         "type": "perspective", "fov_axis": "y", "fov": camera["yfov_degrees"], "near_clip": 1e-3, "far_clip": 1e7,

@@ -63,6 +63,7 @@ KD_STATIC_ASSERT(PT_RADIANCE_CHANNELS + PT_AOV_ALBEDO_CHANNELS + PT_AOV_NORMAL_C
 #define PT_FEATURE_PUNCTUAL (1u << 12)
 /* Not a feature but a test switch (KD_MIS_OFF): light samples at full weight, no MIS. */
 #define PT_FEATURE_MIS_OFF (1u << 13)
+#define PT_FEATURE_ORTHOGRAPHIC (1u << 14)
 
 /* Fixed-point accumulation: every sample value is rounded to a multiple of 2^-PT_FIXED_BITS and
  * summed as int64, so the sum of a sample range does not depend on the order of the additions and

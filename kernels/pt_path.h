@@ -141,6 +141,12 @@ inline void pt_path_begin(PtPath* path, KD_GLOBAL const PtRenderParams* params, 
   float3 up = vload3(0, params->cam_up);
   path->origin = vload3(0, params->cam_origin);
   path->direction = kd_normalize(forward + sx * right + sy * up);
+#ifdef KD_FEATURE_ORTHOGRAPHIC
+  if (PT_USES(params, PT_FEATURE_ORTHOGRAPHIC)) {
+    path->origin = path->origin + sx * right + sy * up;
+    path->direction = forward;
+  }
+#endif
   path->throughput = kd_splat3(1.0f);
   path->radiance = kd_splat3(0.0f);
   path->albedo = kd_splat3(0.0f);

@@ -65,8 +65,8 @@ KD_STATIC_ASSERT(sizeof(PtPunctual) == 48 && KD_OFFSETOF(PtPunctual, direction) 
 typedef struct PtRenderParams {
   float cam_origin[4];
   float cam_forward[4]; /* unit */
-  float cam_right[4];   /* scaled by tan(fov/2) * aspect */
-  float cam_up[4];      /* scaled by tan(fov/2) */
+  float cam_right[4];   /* scaled by tan(fov/2) * aspect; orthographic: by half the view's width */
+  float cam_up[4];      /* scaled by tan(fov/2); orthographic: by half the view's height */
   float bounds_min[4];  /* root voxel of the k-d tree */
   float bounds_max[4];
   kd_u32 width, height;

@@ -26,7 +26,9 @@ CHECKER_CELLS, CHECKER_CELL_PIXELS = 9, 8
 RIDGES_SIZE, RIDGES_PERIOD = 64, 16
 
 CAMERA = {"position": (0.0, 1.6, 4.2), "target": (0.0, 0.45, 0.0), "yfov_degrees": 40.0}
-POINT_LIGHT = {"position": (1.5, 3.0, 2.0), "intensity": 12.0, "color": (1.0, 0.95, 0.85)}
+# Radiant intensity in W/sr; KHR_lights_punctual writes it in candela, 683 lm/W.
+POINT_LIGHT = {"position": (1.5, 3.0, 2.0), "watts_per_sr": 12.0, "color": (1.0, 0.95, 0.85)}
+LUMENS_PER_WATT = 683.0
 
 # glTF material parameters (perceptual roughness; the renderers square it).
 MATERIALS = {
@@ -199,7 +201,8 @@ def write_gltf(out_dir, metal=False):
         "asset": {"version": "2.0", "generator": "kdray samples/gltf_scene.py"},
         "extensionsUsed": ["KHR_lights_punctual"],
         "extensions": {"KHR_lights_punctual": {"lights": [
-            {"name": "lamp", "type": "point", "color": list(POINT_LIGHT["color"]), "intensity": POINT_LIGHT["intensity"]}]}},
+            {"name": "lamp", "type": "point", "color": list(POINT_LIGHT["color"]),
+             "intensity": POINT_LIGHT["watts_per_sr"] * LUMENS_PER_WATT}]}},
         "scene": 0,
         "scenes": [{"nodes": list(range(len(nodes)))}],
         "nodes": nodes,

@@ -49,11 +49,15 @@ void set_camera(PtRenderParams& params, const Camera& camera, uint32_t width, ui
   Vec3 right = cross(forward, camera.up);
   right = scale(right, 1.0f / length(right));
   Vec3 up = cross(right, forward);
-  float tan_half = std::tan(camera.vertical_fov_degrees * 3.14159265358979f / 360.0f);
+  // The image plane's half-height: at unit distance for a perspective view, in scene units for an
+  // orthographic one.
+  float half_height = camera.projection == Projection::Orthographic
+                          ? camera.orthographic_half_height
+                          : std::tan(camera.vertical_fov_degrees * 3.14159265358979f / 360.0f);
   store(params.cam_origin, camera.position);
   store(params.cam_forward, forward);
-  store(params.cam_right, scale(right, tan_half * float(width) / float(height)));
-  store(params.cam_up, scale(up, tan_half));
+  store(params.cam_right, scale(right, half_height * float(width) / float(height)));
+  store(params.cam_up, scale(up, half_height));
 }
 
 uint32_t aov_mask(const RenderSettings& s) {
@@ -124,6 +128,9 @@ uint64_t render_settings_hash(const Scene& scene, const RenderSettings& settings
                                  camera.target.y,   camera.target.z,   camera.up.x,       camera.up.y,
                                  camera.up.z,       camera.vertical_fov_degrees};
   add(camera_values, sizeof camera_values);
+  // Perspective views hash as they did before cameras had a projection, so their films still merge.
+  if (camera.projection == Projection::Orthographic)
+    add(&camera.orthographic_half_height, sizeof camera.orthographic_half_height);
   const std::shared_ptr<const Environment> environment = render_environment(scene, settings);
   const uint32_t switches[] = {environment ? 1u : 0u, settings.mis ? 1u : 0u};
   add(switches, sizeof switches);
@@ -148,10 +155,35 @@ Camera render_camera(const Scene& scene, const RenderSettings& settings) {
       !(length(cross(forward, camera.up)) > 0)) {
     throw Error("", "degenerate camera: position, target and up must be finite, distinct and not collinear");
   }
+  if (settings.fov_degrees > 0) camera.vertical_fov_degrees = settings.fov_degrees;
   if (!(camera.vertical_fov_degrees > 0 && camera.vertical_fov_degrees < 180)) {
     throw Error("", "vertical field of view must be between 0 and 180 degrees");
   }
+  if (camera.projection == Projection::Orthographic &&
+      !(camera.orthographic_half_height > 0 && std::isfinite(camera.orthographic_half_height))) {
+    throw Error("", "orthographic camera '" + camera.name + "' has no positive extent");
+  }
   return camera;
+}
+
+void resolve_image_size(const Camera& camera, uint32_t& width, uint32_t& height) {
+  const double aspect = camera.aspect_ratio > 0 ? camera.aspect_ratio : 1.0;
+  auto side = [](double length) { return uint32_t(std::clamp(std::lround(length), 1l, long(UINT32_MAX))); };
+  if (width == 0 && height == 0) {
+    const double longer = RenderSettings::kDefaultSize;
+    width = aspect >= 1 ? uint32_t(longer) : side(longer * aspect);
+    height = aspect >= 1 ? side(longer / aspect) : uint32_t(longer);
+  } else if (height == 0) {
+    height = side(width / aspect);
+  } else if (width == 0) {
+    width = side(height * aspect);
+  }
+}
+
+RenderSettings resolve_view(const Scene& scene, RenderSettings settings) {
+  settings.camera = render_camera(scene, settings);
+  resolve_image_size(*settings.camera, settings.width, settings.height);
+  return settings;
 }
 
 std::shared_ptr<const Environment> render_environment(const Scene& scene, const RenderSettings& settings) {
@@ -184,6 +216,7 @@ uint32_t kernel_feature_bits(const Scene& scene, const RenderSettings& settings)
   if (render_environment(scene, settings)) bits |= PT_FEATURE_ENVIRONMENT;
   if (!scene.lights.empty()) bits |= PT_FEATURE_PUNCTUAL;
   if (!settings.mis) bits |= PT_FEATURE_MIS_OFF;
+  if (render_camera(scene, settings).projection == Projection::Orthographic) bits |= PT_FEATURE_ORTHOGRAPHIC;
   return bits;
 }
 
@@ -203,6 +236,7 @@ std::string kernel_feature_options(const Scene& scene, const RenderSettings& set
       {PT_FEATURE_ENVIRONMENT, "KD_FEATURE_ENVIRONMENT"},
       {PT_FEATURE_PUNCTUAL, "KD_FEATURE_PUNCTUAL"},
       {PT_FEATURE_MIS_OFF, "KD_MIS_OFF"},
+      {PT_FEATURE_ORTHOGRAPHIC, "KD_FEATURE_ORTHOGRAPHIC"},
   };
   const uint32_t bits = kernel_feature_bits(scene, settings);
   std::string options = "-cl-std=CL1.2";
@@ -420,10 +454,11 @@ std::string join_distinct(const std::vector<std::string>& items, const char* sep
 
 }  // namespace
 
-Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settings, const DeviceSelection& device,
+Film render(const Scene& scene, const KdTree& tree, const RenderSettings& requested, const DeviceSelection& device,
             RenderStats* stats_out, const RenderProgress& progress) {
+  const RenderSettings settings = resolve_view(scene, requested);
   check_settings(settings);
-  const Camera camera = render_camera(scene, settings);
+  const Camera& camera = *settings.camera;
   const std::shared_ptr<const Environment> environment = render_environment(scene, settings);
   std::vector<std::unique_ptr<RenderWorker>> devices;
   if (device.device == kHostDevice) {

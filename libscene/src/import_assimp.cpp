@@ -3,6 +3,7 @@
 #include "importers.h"
 
 #include "declared_counts.h"
+#include "gltf_facts.h"
 #include "material_mapping.h"
 #include "mesh_builder.h"
 #include "polygon.h"
@@ -19,6 +20,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <utility>
 
 namespace kdray {
@@ -53,7 +55,13 @@ Tangent world_tangent(const aiVector3D& normal, const aiVector3D& tangent, const
   return {t.x, t.y, t.z, w};
 }
 
-SourceMaterial source_material(const aiMaterial& material) {
+// Watts per lumen at 555 nm, the factor between glTF's photometric light units (candela, lux) and
+// the radiometric ones kdray renders in (W/sr, W/m^2).
+constexpr float kWattsPerLumen = 1.0f / 683.0f;
+
+// `emissive_strength` multiplies the emission where Assimp gives no intensity of its own (its glTF
+// importer drops KHR_materials_emissive_strength).
+SourceMaterial source_material(const aiMaterial& material, float emissive_strength) {
   SourceMaterial source;
   aiString name;
   if (material.Get(AI_MATKEY_NAME, name) == AI_SUCCESS) source.name = name.C_Str();
@@ -64,9 +72,9 @@ SourceMaterial source_material(const aiMaterial& material) {
     source.diffuse = {base_color.r, base_color.g, base_color.b};
   if (material.Get(AI_MATKEY_COLOR_SPECULAR, color) == AI_SUCCESS) source.specular = to_vec3(color);
   if (material.Get(AI_MATKEY_COLOR_EMISSIVE, color) == AI_SUCCESS) source.emission = to_vec3(color);
-  float intensity = 1;
-  if (material.Get(AI_MATKEY_EMISSIVE_INTENSITY, intensity) == AI_SUCCESS)
-    source.emission = {source.emission.x * intensity, source.emission.y * intensity, source.emission.z * intensity};
+  float intensity = emissive_strength;
+  material.Get(AI_MATKEY_EMISSIVE_INTENSITY, intensity);
+  source.emission = {source.emission.x * intensity, source.emission.y * intensity, source.emission.z * intensity};
   material.Get(AI_MATKEY_SHININESS, source.shininess);
   material.Get(AI_MATKEY_REFRACTI, source.ior);
   material.Get(AI_MATKEY_OPACITY, source.opacity);
@@ -103,9 +111,15 @@ aiMatrix4x4 global_transform(const aiNode* node) {
 class AssimpConverter {
  public:
   AssimpConverter(const std::string& path, const aiScene& source, Scene& scene)
-      : path_(path), source_(source), scene_(scene), builder_(scene.import_stats) {}
+      : path_(path), source_(source), scene_(scene), builder_(scene.import_stats) {
+    if (is_gltf_path(path)) gltf_ = read_gltf_facts(path);
+  }
 
   void convert() {
+    if (gltf_)
+      for (const std::string& extension : unmodelled_gltf_extensions(gltf_->extensions_used))
+        scene_.import_stats.warnings.push_back("glTF extension " + extension +
+                                               " is not modelled by kdray: the asset renders without it");
     convert_materials();
     // Iterative walk: a hostile file's deep hierarchy must not exhaust the stack.
     std::vector<std::pair<const aiNode*, aiMatrix4x4>> pending = {{source_.mRootNode, source_.mRootNode->mTransformation}};
@@ -126,7 +140,8 @@ class AssimpConverter {
     TextureCache textures(scene_);
     const std::filesystem::path directory = std::filesystem::path(path_).parent_path();
     for (unsigned i = 0; i < source_.mNumMaterials; ++i) {
-      const SourceMaterial source = source_material(*source_.mMaterials[i]);
+      const float emissive_strength = gltf_ && i < gltf_->emissive_strength.size() ? gltf_->emissive_strength[i] : 1;
+      const SourceMaterial source = source_material(*source_.mMaterials[i], emissive_strength);
       Material material = map_material(source);
       material.diffuse_texture = texture_index(textures, directory, source.diffuse_texture);
       material.normal_texture = texture_index(textures, directory, source.normal_texture);
@@ -226,21 +241,64 @@ class AssimpConverter {
       converted.position = to_vec3(position);
       converted.target = to_vec3(position + rotation * camera.mLookAt);
       converted.up = normalized(rotation * camera.mUp);
-      // Assimp documents mHorizontalFOV as half the angle, but its 5.2 glTF and Collada
-      // importers store the full horizontal angle (a glTF yfov of 0.7 with aspect 1 reads 0.7).
-      const float horizontal = camera.mHorizontalFOV;
-      const float vertical = camera.mAspect > 0 ? 2 * std::atan(std::tan(horizontal / 2) / camera.mAspect) : horizontal;
-      if (std::isfinite(vertical) && vertical > 0 && vertical < float(M_PI))
-        converted.vertical_fov_degrees = vertical * float(180.0 / M_PI);
+      if (gltf_ && i < gltf_->cameras.size())
+        set_gltf_projection(converted, gltf_->cameras[i]);
+      else
+        set_projection(converted, camera);
       scene_.cameras.push_back(converted);
     }
   }
 
+  // From Assimp's values. Assimp documents mHorizontalFOV as half the angle, but its 5.2 Collada
+  // and FBX importers store the full horizontal angle; mOrthographicWidth is half the width.
+  void set_projection(Camera& converted, const aiCamera& camera) {
+    const float aspect = std::isfinite(camera.mAspect) && camera.mAspect > 0 ? camera.mAspect : 0;
+    converted.aspect_ratio = aspect;
+    if (camera.mOrthographicWidth > 0) {
+      set_orthographic(converted, camera.mOrthographicWidth / (aspect > 0 ? aspect : 1));
+      return;
+    }
+    const float horizontal = camera.mHorizontalFOV;
+    set_vertical_fov(converted, aspect > 0 ? 2 * std::atan(std::tan(horizontal / 2) / aspect) : horizontal);
+  }
+
+  // From the glTF's JSON: Assimp 5.2's importer keeps yfov x aspect, a linear product that no
+  // conversion through tan undoes, and gives orthographic cameras no extent.
+  void set_gltf_projection(Camera& converted, const GltfCamera& authored) {
+    if (authored.orthographic) {
+      converted.aspect_ratio = authored.xmag > 0 && authored.ymag > 0 ? authored.xmag / authored.ymag : 0;
+      set_orthographic(converted, authored.ymag);
+      return;
+    }
+    converted.aspect_ratio = std::isfinite(authored.aspect_ratio) && authored.aspect_ratio > 0 ? authored.aspect_ratio : 0;
+    set_vertical_fov(converted, authored.yfov_radians);
+  }
+
+  void set_vertical_fov(Camera& converted, float radians) {
+    if (std::isfinite(radians) && radians > 0 && radians < float(M_PI)) {
+      converted.vertical_fov_degrees = radians * float(180.0 / M_PI);
+      return;
+    }
+    scene_.import_stats.warnings.push_back("camera '" + converted.name + "' has no valid field of view: " +
+                                           std::to_string(converted.vertical_fov_degrees) + " degrees used");
+  }
+
+  void set_orthographic(Camera& converted, float half_height) {
+    if (!(std::isfinite(half_height) && half_height > 0)) {
+      scene_.import_stats.warnings.push_back("orthographic camera '" + converted.name +
+                                             "' has no valid extent: rendered as a perspective camera");
+      return;
+    }
+    converted.projection = Projection::Orthographic;
+    converted.orthographic_half_height = half_height;
+  }
+
   // Point, spot and directional lights at their nodes. Assimp's glTF importer hands over the
-  // colour times the intensity (candela for point and spot lights, lux for directional ones: taken
-  // as W/sr and W/m^2) and stores the spot cone's half-angles, although aiLight documents full
-  // angles (checked with a KHR_lights_punctual file: innerConeAngle 0.2 reads 0.2). Other kinds
-  // (ambient, area) are reported and skipped.
+  // colour times the intensity (candela for point and spot lights, lux for directional ones, as
+  // KHR_lights_punctual defines them: converted to W/sr and W/m^2 here) and stores the spot cone's
+  // half-angles, although aiLight documents full angles (checked with a KHR_lights_punctual file:
+  // innerConeAngle 0.2 reads 0.2). Other formats' intensities are taken as radiometric. Other
+  // kinds (ambient, area) are reported and skipped.
   void convert_lights() {
     for (unsigned i = 0; i < source_.mNumLights; ++i) {
       const aiLight& light = *source_.mLights[i];
@@ -260,7 +318,9 @@ class AssimpConverter {
       converted.position = to_vec3(transform * light.mPosition);
       const aiVector3D direction = aiMatrix3x3(transform) * light.mDirection;
       converted.direction = direction.Length() > 0 ? normalized(direction) : Vec3{0, 0, -1};
-      converted.color = {light.mColorDiffuse.r, light.mColorDiffuse.g, light.mColorDiffuse.b};
+      const float to_watts = gltf_ ? kWattsPerLumen : 1;
+      converted.color = {light.mColorDiffuse.r * to_watts, light.mColorDiffuse.g * to_watts,
+                         light.mColorDiffuse.b * to_watts};
       if (converted.type == LightType::Spot) {
         converted.outer_cone_radians = std::clamp(light.mAngleOuterCone, 0.0f, float(M_PI));
         converted.inner_cone_radians = std::clamp(light.mAngleInnerCone, 0.0f, converted.outer_cone_radians);
@@ -279,6 +339,7 @@ class AssimpConverter {
   const aiScene& source_;
   Scene& scene_;
   MeshBuilder builder_;
+  std::optional<GltfFacts> gltf_;
 };
 
 }  // namespace

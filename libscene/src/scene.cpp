@@ -19,9 +19,11 @@ constexpr const char* kMaterialTypeNames[] = {"diffuse", "emissive", "mirror", "
                                               "metallic-roughness"};
 constexpr const char* kAlphaModeNames[] = {"opaque", "mask", "blend"};
 constexpr const char* kLightTypeNames[] = {"point", "spot", "directional"};
+constexpr const char* kProjectionNames[] = {"perspective", "orthographic"};
 static_assert(std::size(kMaterialTypeNames) == uint32_t(MaterialType::MetallicRoughness) + 1);
 static_assert(std::size(kAlphaModeNames) == uint32_t(AlphaMode::Blend) + 1);
 static_assert(std::size(kLightTypeNames) == uint32_t(LightType::Directional) + 1);
+static_assert(std::size(kProjectionNames) == uint32_t(Projection::Orthographic) + 1);
 
 template <typename Enum, size_t N>
 const char* name_of(const char* const (&names)[N], Enum value) {
@@ -33,6 +35,7 @@ const char* name_of(const char* const (&names)[N], Enum value) {
 const char* material_type_name(MaterialType type) { return name_of(kMaterialTypeNames, type); }
 const char* alpha_mode_name(AlphaMode mode) { return name_of(kAlphaModeNames, mode); }
 const char* light_type_name(LightType type) { return name_of(kLightTypeNames, type); }
+const char* projection_name(Projection projection) { return name_of(kProjectionNames, projection); }
 
 Camera default_camera(const Bounds& bounds) {
   Camera camera;

@@ -37,6 +37,7 @@ void put(OutputArchive& archive, const Camera& camera) {
   put_vec3(archive, camera.target);
   put_vec3(archive, camera.up);
   archive(camera.vertical_fov_degrees);
+  archive(camera.aspect_ratio, static_cast<uint32_t>(camera.projection), camera.orthographic_half_height);
 }
 
 void put(OutputArchive& archive, const Light& light) {
@@ -180,13 +181,20 @@ Material get_material(Decoder& decoder, uint32_t version) {
   return material;
 }
 
-Camera get_camera(Decoder& decoder) {
+// Version 6 added the aspect ratio and the projection.
+Camera get_camera(Decoder& decoder, uint32_t version) {
   Camera camera;
   camera.name = decoder.get_string();
   camera.position = decoder.get_vec3();
   camera.target = decoder.get_vec3();
   camera.up = decoder.get_vec3();
   decoder.get(camera.vertical_fov_degrees);
+  if (version < format::kSceneCameraAspectVersion) return camera;
+  uint32_t projection = 0;
+  decoder.get(camera.aspect_ratio, projection, camera.orthographic_half_height);
+  if (projection > static_cast<uint32_t>(Projection::Orthographic))
+    decoder.fail("unknown camera projection " + std::to_string(projection));
+  camera.projection = static_cast<Projection>(projection);
   return camera;
 }
 
@@ -247,8 +255,9 @@ std::vector<Material> decode_materials(const std::string& path, const std::vecto
   return decode_list<Material>(path, "materials", bytes, kMinMaterialBytes,
                                [version](Decoder& decoder) { return get_material(decoder, version); });
 }
-std::vector<Camera> decode_cameras(const std::string& path, const std::vector<char>& bytes) {
-  return decode_list<Camera>(path, "cameras", bytes, kMinCameraBytes, get_camera);
+std::vector<Camera> decode_cameras(const std::string& path, const std::vector<char>& bytes, uint32_t version) {
+  return decode_list<Camera>(path, "cameras", bytes, kMinCameraBytes,
+                             [version](Decoder& decoder) { return get_camera(decoder, version); });
 }
 std::vector<Texture> decode_textures(const std::string& path, const std::vector<char>& bytes) {
   return decode_list<Texture>(path, "textures", bytes, kMinTextureBytes, get_texture);

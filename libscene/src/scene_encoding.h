@@ -36,7 +36,7 @@ std::string encode_scene_info(const SceneInfo& info);
 // Decoders throw kdray::Error naming `path` when the bytes are malformed. Every element
 // count is checked against the bytes that remain before anything is allocated.
 std::vector<Material> decode_materials(const std::string& path, const std::vector<char>& bytes, uint32_t version);
-std::vector<Camera> decode_cameras(const std::string& path, const std::vector<char>& bytes);
+std::vector<Camera> decode_cameras(const std::string& path, const std::vector<char>& bytes, uint32_t version);
 std::vector<Texture> decode_textures(const std::string& path, const std::vector<char>& bytes);
 std::vector<Light> decode_lights(const std::string& path, const std::vector<char>& bytes);
 SceneInfo decode_scene_info(const std::string& path, const std::vector<char>& bytes, uint32_t version);

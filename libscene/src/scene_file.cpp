@@ -80,6 +80,12 @@ std::string first_inconsistency(const Scene& scene) {
           light.outer_cone_radians <= 3.14159265f))
       return "light '" + light.name + "' is not finite, has no unit direction, a negative colour or bad cone angles";
   }
+  for (const Camera& camera : scene.cameras) {
+    const bool orthographic = camera.projection == Projection::Orthographic;
+    if (!(camera.aspect_ratio >= 0 && std::isfinite(camera.aspect_ratio)) ||
+        (orthographic && !(camera.orthographic_half_height > 0 && std::isfinite(camera.orthographic_half_height))))
+      return "camera '" + camera.name + "' has a negative or non-finite aspect ratio or orthographic height";
+  }
   for (const Texture& texture : scene.textures)
     if (texture.rgba.size() != uint64_t(texture.width) * texture.height * 4)
       return "texture '" + texture.name + "' has the wrong pixel count";
@@ -204,7 +210,7 @@ Scene read_scene(const std::string& path) {
       throw Error(path, "header flags disagree with the sections present (section " + std::to_string(section) + ")");
 
   scene.materials = encoding::decode_materials(path, collector.materials, contents.header.version);
-  scene.cameras = encoding::decode_cameras(path, collector.cameras);
+  scene.cameras = encoding::decode_cameras(path, collector.cameras, contents.header.version);
   if (collector.has(kSceneTextures)) scene.textures = encoding::decode_textures(path, collector.textures);
   if (collector.has(kSceneLights)) scene.lights = encoding::decode_lights(path, collector.lights);
   encoding::SceneInfo info = encoding::decode_scene_info(path, collector.info, contents.header.version);

@@ -30,20 +30,20 @@ const Light& named(const Scene& scene, const std::string& name) {
   throw std::runtime_error("no light " + name);
 }
 
-TEST(ImportLights, GltfPunctualLightsKeepTheirNodesColoursAndHalfAngles) {
+TEST(ImportLights, GltfPunctualLightsKeepTheirNodesColoursAndHalfAnglesInWatts) {
   Scene scene = import_scene(kLightsGltf, {});
   ASSERT_EQ(scene.lights.size(), 3u);
   // Spot: node at (0, 2, 0) turned -90 degrees about X, so its -Z points down; colour
-  // (1, 0.5, 0.25) x intensity 10; the file's innerConeAngle 0.2 and outerConeAngle 0.5 are
-  // already half-angles.
+  // (1, 0.5, 0.25) x intensity 10 candela, 1/683 W/sr each; the file's innerConeAngle 0.2 and
+  // outerConeAngle 0.5 are already half-angles.
   const Light& spot = named(scene, "spotnode");
   EXPECT_EQ(spot.type, LightType::Spot);
   EXPECT_NEAR(spot.position.y, 2, 1e-6);
   EXPECT_NEAR(spot.direction.y, -1, 1e-6);
   EXPECT_NEAR(spot.direction.z, 0, 1e-6);
-  EXPECT_FLOAT_EQ(spot.color.x, 10);
-  EXPECT_FLOAT_EQ(spot.color.y, 5);
-  EXPECT_FLOAT_EQ(spot.color.z, 2.5f);
+  EXPECT_FLOAT_EQ(spot.color.x, 10 / 683.0f);
+  EXPECT_FLOAT_EQ(spot.color.y, 5 / 683.0f);
+  EXPECT_FLOAT_EQ(spot.color.z, 2.5f / 683.0f);
   EXPECT_FLOAT_EQ(spot.inner_cone_radians, 0.2f);
   EXPECT_FLOAT_EQ(spot.outer_cone_radians, 0.5f);
   const Light& bulb = named(scene, "bulbnode");
@@ -51,13 +51,13 @@ TEST(ImportLights, GltfPunctualLightsKeepTheirNodesColoursAndHalfAngles) {
   EXPECT_FLOAT_EQ(bulb.position.x, 1);
   EXPECT_FLOAT_EQ(bulb.position.y, 2);
   EXPECT_FLOAT_EQ(bulb.position.z, 3);
-  EXPECT_FLOAT_EQ(bulb.color.x, 3);
-  // Directional: -Z turned -45 degrees about X.
+  EXPECT_FLOAT_EQ(bulb.color.x, 3 / 683.0f);
+  // Directional: -Z turned -45 degrees about X; 2 lux, 2/683 W/m^2.
   const Light& sun = named(scene, "sunnode");
   EXPECT_EQ(sun.type, LightType::Directional);
   EXPECT_NEAR(sun.direction.y, -std::sqrt(0.5), 1e-5);
   EXPECT_NEAR(sun.direction.z, -std::sqrt(0.5), 1e-5);
-  EXPECT_FLOAT_EQ(sun.color.x, 2);
+  EXPECT_FLOAT_EQ(sun.color.x, 2 / 683.0f);
 }
 
 TEST(ImportLights, ZUpImportTurnsLightsWithTheGeometry) {

@@ -57,6 +57,9 @@ void expect_equal_scenes(const Scene& a, const Scene& b) {
     EXPECT_TRUE(same_bytes(a.cameras[i].target, b.cameras[i].target));
     EXPECT_TRUE(same_bytes(a.cameras[i].up, b.cameras[i].up));
     EXPECT_EQ(a.cameras[i].vertical_fov_degrees, b.cameras[i].vertical_fov_degrees);
+    EXPECT_EQ(a.cameras[i].aspect_ratio, b.cameras[i].aspect_ratio);
+    EXPECT_EQ(a.cameras[i].projection, b.cameras[i].projection);
+    EXPECT_EQ(a.cameras[i].orthographic_half_height, b.cameras[i].orthographic_half_height);
   }
   EXPECT_EQ(a.import_stats.source_file, b.import_stats.source_file);
   EXPECT_EQ(a.import_stats.importer, b.import_stats.importer);

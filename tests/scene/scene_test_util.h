@@ -24,7 +24,8 @@ inline Scene make_quad_scene(bool with_normals, bool with_uvs, bool with_texture
     white.diffuse_texture = 0;
   }
   scene.materials = {white, light};
-  scene.cameras.push_back({"main", {0.5f, 0.5f, 3}, {0.5f, 0.5f, 0}, {0, 1, 0}, 40});
+  scene.cameras.push_back({"main", {0.5f, 0.5f, 3}, {0.5f, 0.5f, 0}, {0, 1, 0}, 40, 1.5f});
+  scene.cameras.push_back({"plan", {0.5f, 4, 0.5f}, {0.5f, 0, 0.5f}, {0, 0, -1}, 45, 2, Projection::Orthographic, 0.75f});
   scene.emissive_triangles = {1};
   scene.import_stats.source_file = "quad.obj";
   scene.import_stats.importer = "tinyobj";

@@ -80,12 +80,19 @@ json scene_json(const Scene& scene) {
   for (const kdray::Texture& t : scene.textures)
     textures.push_back({{"name", t.name}, {"width", t.width}, {"height", t.height}});
   json cameras = json::array();
-  for (const kdray::Camera& c : scene.cameras)
-    cameras.push_back({{"name", c.name},
-                       {"position", vec3_json(c.position)},
-                       {"target", vec3_json(c.target)},
-                       {"up", vec3_json(c.up)},
-                       {"vertical_fov_degrees", c.vertical_fov_degrees}});
+  for (const kdray::Camera& c : scene.cameras) {
+    json camera = {{"name", c.name},
+                   {"position", vec3_json(c.position)},
+                   {"target", vec3_json(c.target)},
+                   {"up", vec3_json(c.up)},
+                   {"projection", kdray::projection_name(c.projection)},
+                   {"aspect_ratio", c.aspect_ratio}};
+    if (c.projection == kdray::Projection::Orthographic)
+      camera["orthographic_half_height"] = c.orthographic_half_height;
+    else
+      camera["vertical_fov_degrees"] = c.vertical_fov_degrees;
+    cameras.push_back(camera);
+  }
   json punctual = json::array();
   for (const kdray::Light& l : scene.lights) {
     json light = {{"name", l.name}, {"type", kdray::light_type_name(l.type)}, {"color", vec3_json(l.color)}};
@@ -171,11 +178,16 @@ std::string scene_text(const json& j) {
     text += "\n";
   }
   text += format("cameras    %zu\n", j["cameras"].size());
-  for (const json& c : j["cameras"])
-    text += format("  %s at (%g, %g, %g) looking at (%g, %g, %g), vertical fov %g deg\n",
-                   c["name"].get<std::string>().c_str(), c["position"][0].get<double>(), c["position"][1].get<double>(),
-                   c["position"][2].get<double>(), c["target"][0].get<double>(), c["target"][1].get<double>(),
-                   c["target"][2].get<double>(), c["vertical_fov_degrees"].get<double>());
+  for (const json& c : j["cameras"]) {
+    text += format("  %s at (%g, %g, %g) looking at (%g, %g, %g), ", c["name"].get<std::string>().c_str(),
+                   c["position"][0].get<double>(), c["position"][1].get<double>(), c["position"][2].get<double>(),
+                   c["target"][0].get<double>(), c["target"][1].get<double>(), c["target"][2].get<double>());
+    text += c.contains("orthographic_half_height")
+                ? format("orthographic, half-height %g", c["orthographic_half_height"].get<double>())
+                : format("vertical fov %g deg", c["vertical_fov_degrees"].get<double>());
+    const double aspect = c["aspect_ratio"].get<double>();
+    text += aspect > 0 ? format(", aspect %g\n", aspect) : std::string(", aspect not given\n");
+  }
   const json& import = j["import"];
   text += format("source     %s via %s: %llu triangles, dropped %llu degenerate and %llu non-finite, ignored %llu "
                  "points and %llu lines\n",

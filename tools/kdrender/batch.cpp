@@ -44,10 +44,11 @@ int run_batch(const kdray::Scene& scene, const kdray::KdTree& tree, const FrameO
   std::vector<FrameOutcome> outcomes(frames.size());
   size_t counts[3] = {0, 0, 0};
   for (size_t i = 0; i < frames.size(); ++i) {
-    const Frame& frame = frames[i];
+    Frame& frame = frames[i];
     FrameOutcome& outcome = outcomes[i];
     auto frame_start = Clock::now();
     try {
+      frame.settings = kdray::resolve_view(scene, frame.settings);
       if (batch.resume && frame_already_written(frame, scene, tree_hash)) {
         outcome.status = FrameOutcome::Skipped;
       } else {

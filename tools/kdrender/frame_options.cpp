@@ -22,15 +22,17 @@ kdray::Vec3 parse_vec3(const std::string& option, const std::string& text) {
   return v;
 }
 
+// --fov alone changes the scene camera's angle and keeps its place; --cam-pos and --cam-target
+// replace the camera.
 void apply_camera(const FrameOptions& o, kdray::RenderSettings& settings) {
-  bool any = !o.cam_pos.empty() || !o.cam_target.empty() || !o.cam_up.empty() || o.fov != 0;
-  if (!any) return;
+  if (o.fov != 0 && !(o.fov > 0 && o.fov < 180)) throw UsageError("--fov must be between 0 and 180 degrees");
+  settings.fov_degrees = o.fov;
+  if (o.cam_pos.empty() && o.cam_target.empty() && o.cam_up.empty()) return;
   kdray::Camera camera;
   if (o.cam_pos.empty() || o.cam_target.empty()) throw UsageError("--cam-pos and --cam-target go together");
   camera.position = parse_vec3("--cam-pos", o.cam_pos);
   camera.target = parse_vec3("--cam-target", o.cam_target);
   if (!o.cam_up.empty()) camera.up = parse_vec3("--cam-up", o.cam_up);
-  if (o.fov != 0) camera.vertical_fov_degrees = o.fov;
   settings.camera = camera;
 }
 
@@ -77,12 +79,18 @@ void add_frame_options(CLI::App& app, FrameOptions& o) {
       ->capture_default_str();
 
   defaults->group("Camera");
-  app.add_option("--width", s.width, "Image width in pixels")->check(CLI::Range(1u, 16384u))->capture_default_str();
-  app.add_option("--height", s.height, "Image height in pixels")->check(CLI::Range(1u, 16384u))->capture_default_str();
+  app.add_option("--width", s.width,
+                 "Image width in pixels (default: from --height and the camera's aspect ratio; with neither, the "
+                 "longer side is 512, a camera without an aspect ratio square)")
+      ->check(CLI::Range(1u, 16384u));
+  app.add_option("--height", s.height, "Image height in pixels (default: from --width and the camera's aspect ratio)")
+      ->check(CLI::Range(1u, 16384u));
   app.add_option("--cam-pos", o.cam_pos, "Camera position X,Y,Z (default: the scene's camera)");
   app.add_option("--cam-target", o.cam_target, "Point the camera looks at, X,Y,Z");
   app.add_option("--cam-up", o.cam_up, "Up direction X,Y,Z (default 0,1,0)");
-  app.add_option("--fov", o.fov, "Vertical field of view in degrees (default: the scene's camera)");
+  app.add_option("--fov", o.fov,
+                 "Vertical field of view in degrees (default: the scene's camera's; alone, it keeps that camera's "
+                 "position and direction)");
 
   defaults->group("Lights");
   app.add_option("--env", o.env_image,

@@ -101,8 +101,11 @@ uint64_t estimated_render_bytes(const Options& o, const kdray::RenderSettings& s
     const uint64_t size = std::filesystem::file_size(path, error);
     return error ? 0 : size;
   };
+  // Before the scene is read, a side left to the camera's aspect ratio counts as the default size.
+  const uint64_t pixels = uint64_t(s.width ? s.width : kdray::RenderSettings::kDefaultSize) *
+                          (s.height ? s.height : kdray::RenderSettings::kDefaultSize);
   return kRenderBytesPerInputByte * (size_of(o.scene_path) + size_of(o.tree_path)) +
-         kRenderBytesPerPixelChannel * uint64_t(s.width) * s.height * kdray::film_channel_count(s);
+         kRenderBytesPerPixelChannel * pixels * kdray::film_channel_count(s);
 }
 
 int render(const Options& o) {
@@ -124,6 +127,7 @@ int render(const Options& o) {
                                load_seconds);
   }
 
+  frame.settings = kdray::resolve_view(scene, frame.settings);
   kdrender::warn_if_default_light(scene, o.scene_path, frame);
   kdray::tool::ProgressBar progress("kdrender", !o.flags.quiet);
   kdrender::FrameResult result = kdrender::render_frame(scene, tree, frame, [&](uint32_t done, uint32_t total) {

@@ -38,9 +38,11 @@ constexpr uint32_t kMaxSections = 64;
 constexpr char kSceneMagic[8] = {'K', 'D', 'S', 'C', 'E', 'N', 'E', '\0'};
 // Version 2 added punctual lights (kSceneLights), version 3 the metallic-roughness material and
 // its texture and alpha fields, version 4 the geometry hash in the scene info, version 5 the
-// per-vertex tangents (kSceneTangents); version 1 to 4 files are still read.
-constexpr uint32_t kSceneVersion = 5;
+// per-vertex tangents (kSceneTangents), version 6 each camera's aspect ratio and projection;
+// version 1 to 5 files are still read.
+constexpr uint32_t kSceneVersion = 6;
 constexpr uint32_t kSceneGeometryHashVersion = 4;  // the first version whose scene info records it
+constexpr uint32_t kSceneCameraAspectVersion = 6;  // the first version whose cameras record them
 
 enum SceneSection : uint32_t {
   kScenePositions = 1,       // float32 x,y,z per vertex

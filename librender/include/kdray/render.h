@@ -27,13 +27,14 @@ struct RenderSettings {
   static constexpr uint32_t kDefaultMaxBounces = 8;
   static constexpr uint32_t kMaxBouncesLimit = 1024;
 
-  uint32_t width = kDefaultSize, height = kDefaultSize;
+  uint32_t width = 0, height = 0;  // 0: from the camera's aspect ratio (resolve_view)
   uint32_t spp = kDefaultSpp;     // samples per pixel in this range
   uint32_t sample_offset = 0;     // renders samples sample_offset..sample_offset+spp-1
   uint32_t seed = 0;
   uint32_t max_bounces = kDefaultMaxBounces;  // as Cycles counts: 0 is direct light only
   Sampler sampler = Sampler::Sobol;
   std::optional<Camera> camera;   // default: the scene's first camera, else default_camera()
+  float fov_degrees = 0;          // > 0: replaces the camera's vertical field of view
   // Lights rays that leave the scene (camera rays too); none by default.
   std::shared_ptr<const Environment> environment;
   // A scene with no emitter, no punctual light and no environment is lit by a uniform white
@@ -92,8 +93,18 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settin
 // scene compiles a diffuse-only kernel.
 std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device);
 
-// The camera from settings, the scene or default_camera(scene bounds), checked (finite, non-degenerate, 0 < fov < 180).
+// The camera from settings, the scene or default_camera(scene bounds), with settings.fov_degrees
+// applied, checked (finite, non-degenerate, 0 < fov < 180, a positive orthographic extent).
 Camera render_camera(const Scene& scene, const RenderSettings& settings);
+
+// The image size for a camera, as glTF viewers and Blender frame an asset: both sides as given;
+// one side given, the other from the camera's aspect ratio; neither, the longer side
+// RenderSettings::kDefaultSize. A camera without an aspect ratio gives square images.
+void resolve_image_size(const Camera& camera, uint32_t& width, uint32_t& height);
+
+// The settings with what they leave to the scene filled in: the camera (render_camera) and the
+// image size (resolve_image_size). render() does this itself; tools call it to know the size.
+RenderSettings resolve_view(const Scene& scene, RenderSettings settings);
 
 // The film's channels for these settings: RGB, then the AOV layers asked for, in the order the
 // kernels accumulate them (kernels/pt_codes.h); film_channel_names has film_channel_count names.

@@ -70,18 +70,26 @@ struct Texture {
   std::vector<uint8_t> rgba;
 };
 
+enum class Projection : uint32_t { Perspective = 0, Orthographic = 1 };
+
+const char* projection_name(Projection projection);
+
 struct Camera {
   std::string name;
   Vec3 position{0, 0, 1};
   Vec3 target{0, 0, 0};
   Vec3 up{0, 1, 0};
-  float vertical_fov_degrees = 45.0f;
+  float vertical_fov_degrees = 45.0f;  // perspective
+  // Format version 6 on (older files read the defaults).
+  float aspect_ratio = 0;  // width / height of the view as authored; 0: the asset does not say
+  Projection projection = Projection::Perspective;
+  float orthographic_half_height = 0;  // orthographic: half the view's height in scene units
 };
 
-// Punctual lights, as Assimp reads them (glTF KHR_lights_punctual, FBX, Collada, ...). Units as
-// glTF viewers take them, without a 683 lm/W factor: `color` (the light's colour times its
-// intensity) is an intensity in W/sr for point and spot lights and an irradiance in W/m^2 for
-// directional ones.
+// Punctual lights, as Assimp reads them (glTF KHR_lights_punctual, FBX, Collada, ...) in radiometric
+// units: `color` (the light's colour times its intensity) is an intensity in W/sr for point and
+// spot lights and an irradiance in W/m^2 for directional ones. glTF's photometric candela and lux
+// are converted at import (1/683 W per lumen).
 enum class LightType : uint32_t {
   Point = PT_PUNCTUAL_POINT,
   Spot = PT_PUNCTUAL_SPOT,

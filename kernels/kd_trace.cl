@@ -1,6 +1,6 @@
 /* Closest hits for a buffer of rays (kdtrace --device opencl, and the kernel-vs-CPU test).
  * Persistent threads: each work-item fetches its own batch of rays from a global atomic counter
- * until none are left (GUIDE section 4). */
+ * until none are left. */
 #define KD_EMPTY_LEAF_BITS
 #include "kd_trace_args.h"
 #include "kd_traverse.h"

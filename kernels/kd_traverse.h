@@ -17,7 +17,7 @@
  *
  * Short stack with restart; KD_SHORT_STACK_SIZE (default below) is a compile-time constant.
  *
- * The algorithm (GUIDE section 4): the ray is clipped to the root voxel; at each inner node
+ * The algorithm: the ray is clipped to the root voxel; at each inner node
  * t_split = (split - o_k) / d_k; the near child holds the origin (or, on the plane, the side the
  * ray moves into: below when d_k <= 0). t_split > t_max or t_split <= 0: near only;
  * t_split < t_min: far only; otherwise the far child goes on the stack with [t_split, t_max]

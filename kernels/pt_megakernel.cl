@@ -1,6 +1,6 @@
 /* Megakernel path tracer with persistent threads: about as many work-items as the device runs
- * at once; each takes the next pixel from a global atomic counter (GUIDE section 4: every
- * work-item fetches its own work, no lockstep assumption) and renders samples
+ * at once; each takes the next pixel from a global atomic counter (every work-item
+ * fetches its own work, with no assumption that work-items run in lockstep) and renders samples
  * sample_offset..sample_offset+sample_count-1 of it. Each pixel belongs to one work-item per
  * launch, so its film sums are updated without atomics. */
 /* Empty leaves are skipped by their node's header (kernels/kd_traverse.h): no stack round trip

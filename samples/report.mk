@@ -15,7 +15,7 @@ REPORT_SPP ?= 256
 REPORT_REFERENCE_SPP ?= 4096
 REPORT_BOUNCES ?= 8
 KDCOMPARE = $(BUILD)/tools/kdcompare/kdcompare
-# Debian's matplotlib belongs to /usr/bin/python3 (GUIDE section 9).
+# Debian's matplotlib belongs to /usr/bin/python3.
 SPEED_VS_ERROR = /usr/bin/python3 ../scripts/speed_vs_error.py
 
 # kdrender options per scene (the camera where the scene file has none, the environment), as the

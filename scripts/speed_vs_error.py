@@ -16,7 +16,7 @@
   speed_vs_error.py plot OUT.csv [MORE.csv ...] -o PLOT.png [--metric relmse]
       Log-log plot of error against seconds, one line per CSV, with a 1/t slope for comparison.
 
-Debian's matplotlib belongs to /usr/bin/python3 (GUIDE section 9), hence the interpreter line.
+Debian's matplotlib belongs to /usr/bin/python3, hence the interpreter line.
 """
 
 import argparse

@@ -91,7 +91,8 @@ int merge(const Options& o, bool range_given) {
 
 // Peak memory of a render: the scene and the tree are held by the host and again by the
 // OpenCL device (host memory on PoCL), and each film channel keeps exact sums, means and the
-// device's accumulators. Measured: see RELIABILITY.md (Resource limits).
+// device's accumulators. An estimate with a margin, not a measurement (RELIABILITY.md, Resource
+// limits).
 constexpr uint64_t kRenderBytesPerInputByte = 3;
 constexpr uint64_t kRenderBytesPerPixelChannel = 32;
 

@@ -80,8 +80,8 @@ int main(int argc, char** argv) {
   auto* generate_option =
       app.add_option("--generate", generate,
                      "Trace a generated ray set instead: camera (the scene's first camera, --width x --height), "
-                     "random (origins on the bounding sphere aimed into the box, --count) or hard (GUIDE section 6 "
-                     "cases, --count)")
+                     "random (origins on the bounding sphere aimed into the box, --count) or hard (axis-aligned with "
+                     "+0/-0 components, on and in split planes, through vertices and edges, --count)")
           ->check(CLI::IsMember({"camera", "random", "hard"}))->group("Rays");
   rays_option->excludes(generate_option);
   app.add_option("--count", count, "Rays of a random or hard set")

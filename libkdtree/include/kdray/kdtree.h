@@ -15,7 +15,7 @@
 namespace kdray {
 
 // Everything that decides the shape of the tree; recorded in the .kdtree file. The names and
-// defaults are the seed paper's (GUIDE section 3).
+// defaults are those of the SAH k-d tree literature (formats/kdtree.md).
 struct BuildSettings {
   static constexpr float kDefaultTraversalCost = 15.0f;     // K_T
   static constexpr float kDefaultIntersectionCost = 20.0f;  // K_I

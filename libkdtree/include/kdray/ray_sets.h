@@ -21,7 +21,7 @@ std::vector<RayRecord> camera_rays(const Scene& scene, uint32_t width, uint32_t 
 // the box (the benchmark's "random rays").
 std::vector<RayRecord> random_rays(const Bounds& bounds, size_t count, uint64_t seed);
 
-// GUIDE section 6's hard cases, in equal shares: axis-aligned rays with +0/-0 components,
+// The numerically hard cases, in equal shares: axis-aligned rays with +0/-0 components,
 // origins exactly on split planes of `tree`, rays lying in split planes, rays aimed at
 // vertices, rays aimed at points on edges, and axis-aligned rays through vertices.
 std::vector<RayRecord> hard_case_rays(const Scene& scene, const KdTree& tree, size_t count, uint64_t seed);

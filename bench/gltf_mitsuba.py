@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Renders samples/gltf_scene.py's glTF scene with Mitsuba 3 (a yardstick, not a dependency):
 the same meshes, camera, point light (a Mitsuba `point` emitter of the same intensity in W/sr)
-and materials as kdray reads them: glTF non-metals as `roughplastic` (GGX, alpha = roughness^2,
-int_ior 1.5, linear mode) with the base colour (the floor's checker as a bilinear `bitmap`), the
+and materials as kdray reads them, as near as Mitsuba has them: glTF non-metals as `roughplastic`
+(GGX, alpha = roughness^2, int_ior 1.5, linear mode; a coated diffuse, darker when rough than the
+glTF specification's BRDF that kdray renders, so the plastics differ by design) with the base
+colour (the floor's checker as a bilinear `bitmap`), the
 normal-mapped box through `normalmap`, the metal as `principled` with metallic 1 (Schlick's
 Fresnel of the base colour, as glTF and kdray).
 

@@ -1,7 +1,7 @@
 /* Materials: Lambertian diffuse (also the reflection of emitters), perfect mirror, GGX rough
- * conductor (Walter et al. 2007), smooth dielectric and glTF metallic-roughness (a GGX conductor
- * blended with a diffuse base under a rough dielectric GGX coat, as Mitsuba 3's roughplastic, with
- * the coat's tables of kernels/pt_coat.h).
+ * conductor (Walter et al. 2007), smooth dielectric and glTF metallic-roughness (the glTF 2.0
+ * specification's BRDF, its Appendix B: a Fresnel mix of a Lambertian base and a GGX layer,
+ * blended by metallic with a GGX conductor).
  * Conventions: n is the shading normal turned to the side of wo; wo and wi point away from the
  * surface; "weight" is f * |cos| / pdf. Features a scene lacks are compiled out. */
 #ifndef PT_BSDF_H
@@ -9,9 +9,6 @@
 
 #include "pt_sampling.h"
 #include "pt_types.h"
-#ifdef KD_FEATURE_METALLIC_ROUGHNESS
-#include "pt_coat.h"
-#endif
 
 typedef struct PtBsdfSample {
   float3 wi;
@@ -36,28 +33,35 @@ inline float pt_ggx_g1(float cos_v, float alpha2) {
   float tan2 = fmax(0.0f, 1.0f - c2) / fmax(c2, 1e-12f);
   return 2.0f / (1.0f + sqrt(1.0f + alpha2 * tan2));
 }
-inline float3 pt_schlick(float3 f0, float cos_theta) {
+/* Schlick's (1 - cos)^5, the share of 1 - f0 that a Fresnel factor adds to f0. */
+inline float pt_schlick_weight(float cos_theta) {
   float m = clamp(1.0f - cos_theta, 0.0f, 1.0f);
-  float m5 = (m * m) * (m * m) * m;
-  return f0 + (1.0f - f0) * m5;
+  return (m * m) * (m * m) * m;
 }
+inline float3 pt_schlick(float3 f0, float cos_theta) { return f0 + (1.0f - f0) * pt_schlick_weight(cos_theta); }
 inline float pt_ggx_alpha2(float roughness) {
   float alpha = fmax(roughness, 1e-3f);
   return alpha * alpha;
 }
-/* D * G / (4 cos(wo)) (f * cos(wi) without the Fresnel factor), the pdf of sampling wi by
- * pt_ggx_sample_wi, and wo . h. */
+/* D(h) for the half vector h of wo and wi (both on the side of n), with wo . h and the pdf of
+ * drawing wi by pt_ggx_sample_wi. */
+inline float pt_ggx_half_vector_d(float alpha2, float3 n, float3 wo, float3 wi, float* pdf, float* o_h) {
+  float3 h = kd_normalize(wo + wi);
+  float cos_h = kd_dot(n, h);
+  *o_h = kd_dot(wo, h);
+  float d = pt_ggx_d(cos_h, alpha2);
+  *pdf = d * cos_h / (4.0f * *o_h);
+  return d;
+}
+/* D * G / (4 cos(wo)) (f * cos(wi) without the Fresnel factor) with the separable Smith G, the pdf
+ * of sampling wi by pt_ggx_sample_wi, and wo . h. */
 inline float pt_ggx_eval_common(float roughness, float3 n, float3 wo, float3 wi, float* pdf, float* o_h) {
   *pdf = 0.0f;
   *o_h = 1.0f;
   float cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
   if (cos_o <= 0.0f || cos_i <= 0.0f) return 0.0f;
-  float3 h = kd_normalize(wo + wi);
   float alpha2 = pt_ggx_alpha2(roughness);
-  float cos_h = kd_dot(n, h);
-  *o_h = kd_dot(wo, h);
-  float d = pt_ggx_d(cos_h, alpha2);
-  *pdf = d * cos_h / (4.0f * *o_h);
+  float d = pt_ggx_half_vector_d(alpha2, n, wo, wi, pdf, o_h);
   float g = pt_ggx_g1(cos_o, alpha2) * pt_ggx_g1(cos_i, alpha2);
   return d * g / (4.0f * cos_o);
 }
@@ -81,7 +85,7 @@ inline float3 pt_ggx_sample_wi(float roughness, float3 n, float3 wo, float u1, f
 }
 #endif
 
-#if defined(KD_FEATURE_GLASS) || defined(KD_FEATURE_METALLIC_ROUGHNESS)
+#ifdef KD_FEATURE_GLASS
 /* Unpolarised Fresnel reflectance for cos_i on the side of index eta_i into eta_t. */
 inline float pt_fresnel_dielectric(float cos_i, float cos_t, float eta_i, float eta_t) {
   float rs = (eta_i * cos_i - eta_t * cos_t) / (eta_i * cos_i + eta_t * cos_t);
@@ -91,55 +95,63 @@ inline float pt_fresnel_dielectric(float cos_i, float cos_t, float eta_i, float 
 #endif
 
 #ifdef KD_FEATURE_METALLIC_ROUGHNESS
-/* Reflectance of a smooth interface seen from outside, into index eta. */
-inline float pt_fresnel_coat(float cos_i, float eta) {
-  float sin2_t = fmax(0.0f, 1.0f - cos_i * cos_i) / (eta * eta);
-  if (sin2_t >= 1.0f) return 1.0f;
-  return pt_fresnel_dielectric(cos_i, sqrt(1.0f - sin2_t), 1.0f, eta);
+/* The glTF specular layer's D * G / (4 cos(wo)) (its f * cos(wi) without the Fresnel factor):
+ * the specification's G is the height-correlated Smith masking-shadowing function,
+ * 2 cos_o cos_i / (cos_o sqrt(a2 + (1 - a2) cos_i^2) + cos_i sqrt(a2 + (1 - a2) cos_o^2)), not the
+ * separable one of the rough conductor. Also the pdf of pt_ggx_sample_wi and wo . h. */
+inline float pt_gltf_specular(float roughness, float3 n, float3 wo, float3 wi, float* pdf, float* o_h) {
+  *pdf = 0.0f;
+  *o_h = 1.0f;
+  float cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
+  if (cos_o <= 0.0f || cos_i <= 0.0f) return 0.0f;
+  float alpha2 = pt_ggx_alpha2(roughness);
+  float d = pt_ggx_half_vector_d(alpha2, n, wo, wi, pdf, o_h);
+  float g_denominator = cos_o * sqrt(alpha2 + (1.0f - alpha2) * cos_i * cos_i) +
+                        cos_i * sqrt(alpha2 + (1.0f - alpha2) * cos_o * cos_o);
+  return d * cos_i / (2.0f * g_denominator);
 }
-/* Probability of sampling the GGX lobes (metal and coat share the distribution): the metal's
- * weight plus the coat's share of what the plastic reflects at wo, whose coat transmits t_o. */
-inline float pt_metal_rough_ggx_probability(const PtMaterial* m, float3 color, float t_o) {
-  float coat = 1.0f - t_o;
-  float diffuse = t_o * pt_luminance(color);
-  float p_coat = coat + diffuse > 0.0f ? coat / (coat + diffuse) : 1.0f;
-  return m->metallic + (1.0f - m->metallic) * p_coat;
+/* The dielectric's Schlick Fresnel, f0 from its index of refraction (0.04 at glTF's 1.5). */
+inline float pt_gltf_dielectric_fresnel(float ior, float cos_theta) {
+  float r = (ior - 1.0f) / (ior + 1.0f);
+  float f0 = r * r;
+  return f0 + (1.0f - f0) * pt_schlick_weight(cos_theta);
 }
-/* f * cos(wi) and pdf of glTF metallic-roughness. The plastic part is Mitsuba 3's roughplastic
- * (linear mode): the coat's GGX reflection plus the base's light, which enters and leaves through
- * the rough interface with its transmittances t_i and t_o and is reflected back inside with
- * F_int (kernels/pt_coat.h): color cos(wi) / pi * t_i t_o / (eta^2 (1 - F_int)). */
-inline float3 pt_metal_rough_eval(const PtMaterial* m, KD_GLOBAL const float* coat_tables, float3 color, float3 n,
-                                  float3 wo, float3 wi, float* pdf) {
+/* Probability of drawing wi from the GGX lobe rather than the cosine one: the metal's weight plus
+ * the dielectric's specular share at wo, estimated with Fresnel at wo . n in place of wo . h (the
+ * layer reflects F, the base (1 - F) times its colour), so that a sample's weight stays close to
+ * the albedo whichever lobe drew it. */
+inline float pt_gltf_ggx_probability(const PtMaterial* m, float3 color, float cos_o) {
+  float f = pt_gltf_dielectric_fresnel(m->ior, cos_o);
+  float diffuse = (1.0f - f) * pt_luminance(color);
+  float p_specular = f + diffuse > 0.0f ? f / (f + diffuse) : 1.0f;
+  return m->metallic + (1.0f - m->metallic) * p_specular;
+}
+/* f * cos(wi) and pdf of glTF metallic-roughness (the specification's Appendix B):
+ * mix(dielectric, metal, metallic) with metal = specular * Schlick(color, wo . h) and
+ * dielectric = (1 - F) color / pi + F specular, F = Schlick(f0 of ior, wo . h). The pdf is the
+ * mixture of the two lobes pt_bsdf_sample draws from. */
+inline float3 pt_metal_rough_eval(const PtMaterial* m, float3 color, float3 n, float3 wo, float3 wi, float* pdf) {
   float ggx_pdf, o_h;
-  float common = pt_ggx_eval_common(m->roughness, n, wo, wi, &ggx_pdf, &o_h);
+  float specular = pt_gltf_specular(m->roughness, n, wo, wi, &ggx_pdf, &o_h);
   float cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
   *pdf = 0.0f;
   if (cos_o <= 0.0f || cos_i <= 0.0f) return kd_splat3(0.0f);
-  float eta = m->ior;
-  float3 metal = pt_schlick(color, o_h) * common;
-  float coat = pt_fresnel_coat(o_h, eta) * common;
-  PtCoatRow row = pt_coat_row(coat_tables, eta, m->roughness);
-  float t_o = pt_coat_transmittance(coat_tables, row, cos_o);
-  float transmit = pt_coat_transmittance(coat_tables, row, cos_i) * t_o;
-  float3 base = color * (cos_i * PT_INV_PI * transmit /
-                         (eta * eta * (1.0f - pt_coat_internal_reflectance(coat_tables, row))));
-  float p_ggx = pt_metal_rough_ggx_probability(m, color, t_o);
+  float3 metal = pt_schlick(color, o_h) * specular;
+  float f = pt_gltf_dielectric_fresnel(m->ior, o_h);
+  float3 dielectric = color * ((1.0f - f) * cos_i * PT_INV_PI) + kd_splat3(f * specular);
+  float p_ggx = pt_gltf_ggx_probability(m, color, cos_o);
   *pdf = p_ggx * ggx_pdf + (1.0f - p_ggx) * cos_i * PT_INV_PI;
-  return m->metallic * metal + (1.0f - m->metallic) * (coat + base);
+  return m->metallic * metal + (1.0f - m->metallic) * dielectric;
 }
 #endif
 
 inline int pt_is_delta(uint type) { return type == PT_MIRROR || type == PT_DIELECTRIC; }
 
-/* f * |cos(wi)| for the non-delta lobes, and the pdf pt_bsdf_sample would give wi. coat_tables:
- * kernels/pt_coat.h, read by metallic-roughness materials only. */
-inline float3 pt_bsdf_eval(const PtMaterial* m, KD_GLOBAL const float* coat_tables, float3 color, float3 n, float3 wo,
-                           float3 wi, float* pdf) {
+/* f * |cos(wi)| for the non-delta lobes, and the pdf pt_bsdf_sample would give wi. */
+inline float3 pt_bsdf_eval(const PtMaterial* m, float3 color, float3 n, float3 wo, float3 wi, float* pdf) {
 #ifdef KD_FEATURE_METALLIC_ROUGHNESS
-  if (m->type == PT_METALLIC_ROUGHNESS) return pt_metal_rough_eval(m, coat_tables, color, n, wo, wi, pdf);
+  if (m->type == PT_METALLIC_ROUGHNESS) return pt_metal_rough_eval(m, color, n, wo, wi, pdf);
 #endif
-  (void)coat_tables;
 #ifdef KD_FEATURE_GLOSSY
   if (m->type == PT_ROUGH_CONDUCTOR) return pt_ggx_eval(color, m->roughness, n, wo, wi, pdf);
 #endif
@@ -154,8 +166,8 @@ inline float3 pt_bsdf_eval(const PtMaterial* m, KD_GLOBAL const float* coat_tabl
 
 /* entering: wo is on the front (winding) side, which for a dielectric is the outside. u_lobe
  * picks the lobe of layered materials. */
-inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, KD_GLOBAL const float* coat_tables, float3 color, float3 n,
-                                   float3 wo, int entering, float u1, float u2, float u_lobe) {
+inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, float3 color, float3 n, float3 wo, int entering, float u1,
+                                   float u2, float u_lobe) {
   PtBsdfSample s;
   s.is_delta = 0;
   s.transmits = 0;
@@ -200,20 +212,17 @@ inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, KD_GLOBAL const float* c
 #endif
 #ifdef KD_FEATURE_METALLIC_ROUGHNESS
   if (m->type == PT_METALLIC_ROUGHNESS) {
-    PtCoatRow row = pt_coat_row(coat_tables, m->ior, m->roughness);
-    float t_o = pt_coat_transmittance(coat_tables, row, kd_dot(n, wo));
-    if (u_lobe < pt_metal_rough_ggx_probability(m, color, t_o))
+    if (u_lobe < pt_gltf_ggx_probability(m, color, kd_dot(n, wo)))
       s.wi = pt_ggx_sample_wi(m->roughness, n, wo, u1, u2);
     else
       s.wi = pt_sample_cosine(n, u1, u2);
-    float3 f_cos = pt_metal_rough_eval(m, coat_tables, color, n, wo, s.wi, &s.pdf);
+    float3 f_cos = pt_metal_rough_eval(m, color, n, wo, s.wi, &s.pdf);
     s.weight = s.pdf > 0.0f ? f_cos / s.pdf : kd_splat3(0.0f);
     return s;
   }
 #endif
   (void)entering;
   (void)u_lobe;
-  (void)coat_tables;
   s.wi = pt_sample_cosine(n, u1, u2);
   s.pdf = fmax(kd_dot(n, s.wi), 0.0f) * PT_INV_PI;
   s.weight = s.pdf > 0.0f ? color : kd_splat3(0.0f);

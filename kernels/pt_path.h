@@ -35,7 +35,6 @@ typedef struct PtSceneData {
   KD_GLOBAL const float* env_texels;    /* KD_FEATURE_ENVIRONMENT: RGB (kernels/pt_environment.h) */
   KD_GLOBAL const float* env_cdf;
   KD_GLOBAL const PtPunctual* punctuals; /* KD_FEATURE_PUNCTUAL */
-  KD_GLOBAL const float* coat_tables;    /* KD_FEATURE_METALLIC_ROUGHNESS (kernels/pt_coat.h) */
 } PtSceneData;
 
 /* The argument list every path-tracing kernel starts with (kernels/pt_scene_args.h), and the one
@@ -211,7 +210,7 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, KD_GLOBAL cons
   float cos_light = -kd_dot(light_normal, wi);
   if (cos_light <= 0.0f) return; /* emitters are one-sided */
   float bsdf_pdf;
-  float3 f_cos = pt_bsdf_eval(m, scene->coat_tables, color, n, wo, wi, &bsdf_pdf);
+  float3 f_cos = pt_bsdf_eval(m, color, n, wo, wi, &bsdf_pdf);
   if (bsdf_pdf <= 0.0f || kd_dot(wi, ng) <= 0.0f) return;
   PtMaterial light = scene->materials[scene->material_ids[tri]];
   float3 emission = vload3(0, light.emission); /* what the emitter table's pdf is made of */
@@ -234,12 +233,11 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, KD_GLOBAL cons
 
 #if defined(KD_FEATURE_ENVIRONMENT) || defined(KD_FEATURE_PUNCTUAL)
 /* Next-event estimation towards a sampled environment direction or punctual light. */
-inline void pt_shadow_towards(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
-                              const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng, float3 wo,
-                              PtLightSample ls) {
+inline void pt_shadow_towards(PtPath* path, KD_GLOBAL const PtRenderParams* params, const PtMaterial* m,
+                              float3 color, float3 p, float3 n, float3 ng, float3 wo, PtLightSample ls) {
   if (kd_dot(ls.wi, ng) <= 0.0f || pt_max3(ls.value) <= 0.0f) return;
   float bsdf_pdf;
-  float3 f_cos = pt_bsdf_eval(m, scene->coat_tables, color, n, wo, ls.wi, &bsdf_pdf);
+  float3 f_cos = pt_bsdf_eval(m, color, n, wo, ls.wi, &bsdf_pdf);
   if (pt_max3(f_cos) <= 0.0f) return;
   float weight = ls.pdf > 0.0f ? pt_mis_light(params, ls.pdf, bsdf_pdf) : 1.0f;
   float3 origin = pt_offset_origin(p, ng);
@@ -263,7 +261,7 @@ inline void pt_next_event_any(PtPath* path, const PtSceneData* scene, KD_GLOBAL 
   u -= params->select_triangles;
 #ifdef KD_FEATURE_ENVIRONMENT
   if (u < params->select_environment) {
-    pt_shadow_towards(path, scene, params, m, color, p, n, ng, wo,
+    pt_shadow_towards(path, params, m, color, p, n, ng, wo,
                       pt_env_sample_light(scene->env_texels, scene->env_cdf, params, p,
                                           pt_path_sample2(path, params, PT_DIM_ENV_U)));
     return;
@@ -273,7 +271,7 @@ inline void pt_next_event_any(PtPath* path, const PtSceneData* scene, KD_GLOBAL 
 #ifdef KD_FEATURE_PUNCTUAL
   float rest = 1.0f - params->select_triangles - params->select_environment;
   if (params->punctual_count > 0 && rest > 0.0f) {
-    pt_shadow_towards(path, scene, params, m, color, p, n, ng, wo,
+    pt_shadow_towards(path, params, m, color, p, n, ng, wo,
                       pt_punctual_sample_light(scene->punctuals, params, p, fmin(u / rest, 0.99999994f)));
   }
 #endif
@@ -390,7 +388,7 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, KD_GLOBAL cons
 #else
   float u_lobe = 0.0f;
 #endif
-  PtBsdfSample s = pt_bsdf_sample(&m, scene->coat_tables, color, n, wo, front, u.x, u.y, u_lobe);
+  PtBsdfSample s = pt_bsdf_sample(&m, color, n, wo, front, u.x, u.y, u_lobe);
   float side = kd_dot(s.wi, ng_facing);
   if (pt_max3(s.weight) <= 0.0f || (s.transmits ? side >= 0.0f : side <= 0.0f)) {
     path->alive = 0;

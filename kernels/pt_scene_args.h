@@ -22,7 +22,6 @@
   SHADING(PtLight, lights)                  \
   SHADING(float, env_texels)                \
   SHADING(float, env_cdf)                   \
-  SHADING(PtPunctual, punctuals)            \
-  SHADING(float, coat_tables)
+  SHADING(PtPunctual, punctuals)
 
 #endif /* PT_SCENE_ARGS_H */

@@ -8,7 +8,7 @@ metal sphere, a box whose faces carry a normal map of ridges, a point light
 
 --metal makes every material a metal (metallic 1): the variant whose materials kdray and Mitsuba 3
 model alike (Schlick's Fresnel of the base colour over GGX), for comparing the lights and textures
-apart from the plastic coat.
+apart from the plastics (kdray's are the glTF specification's BRDF, which Mitsuba does not have).
 
 bench/gltf_mitsuba.py imports scene() to give Mitsuba 3 the same meshes, materials, light and
 camera. Textures: the checker has an odd number of cells per side, so it reads the same whichever

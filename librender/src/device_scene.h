@@ -18,7 +18,6 @@ struct DeviceScene {
   cl::Buffer material_ids, materials, normals, uvs, tangents, textures, texels, lights;
   cl::Buffer env_texels, env_cdf;  // kernels/pt_environment.h
   cl::Buffer punctuals;            // PtPunctual per Scene::lights entry
-  cl::Buffer coat_tables;          // kernels/pt_coat.h, for the metallic-roughness materials' etas
 };
 
 DeviceGeometry upload_geometry(cl::Runtime& runtime, const GeometryArrays& geometry);

@@ -1,7 +1,6 @@
 // The kernels' arrays of a scene (see scene_arrays.h).
 #include "scene_arrays.h"
 
-#include <kdray/coat_tables.h>
 #include <kdray/traverse.h>
 #include <kdray/util.h>
 
@@ -74,10 +73,6 @@ void add_materials(SceneArrays& arrays, const Scene& scene) {
     pm.emissive_texture = texture_index(m.emissive_texture, false);
     arrays.device_materials.push_back(pm);
   }
-  std::vector<float> coat_etas;
-  for (const PtMaterial& m : arrays.device_materials)
-    if (m.type == static_cast<kd_u32>(MaterialType::MetallicRoughness)) coat_etas.push_back(m.ior);
-  if (!coat_etas.empty()) arrays.device_coat_tables = build_coat_tables(coat_etas);
 }
 
 // Power-weighted emitter table; triangles whose emission has no power are never picked.
@@ -132,7 +127,6 @@ SceneArrays scene_arrays(const Scene& scene, const KdTree& tree, const Environme
   arrays.materials = host_array(arrays.device_materials);
   arrays.textures = host_array(arrays.device_textures);
   arrays.texels = host_array(arrays.device_texels);
-  arrays.coat_tables = host_array(arrays.device_coat_tables);
 
   add_emitters(arrays, scene);
   arrays.lights = host_array(arrays.device_lights);

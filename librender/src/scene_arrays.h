@@ -58,7 +58,7 @@ struct SceneArrays {
   std::vector<Tangent> computed_tangents;
   std::vector<PtMaterial> device_materials;
   std::vector<PtTexture> device_textures;
-  std::vector<float> device_texels, device_coat_tables, env_table;
+  std::vector<float> device_texels, env_table;
   std::vector<PtLight> device_lights;
   std::vector<PtPunctual> device_punctuals;
 

@@ -73,7 +73,7 @@ TEST(ImportMaterials, SmoothFullMetalIsAMirrorOfItsBaseColour) {
   EXPECT_FLOAT_EQ(polished.base_color.z, 0.2f);
 }
 
-TEST(ImportMaterials, RoughNonMetalIsACoatedDiffuseBase) {
+TEST(ImportMaterials, RoughNonMetalIsAMetallicRoughnessMaterial) {
   Scene scene = import_scene(kMaterialsGltf, {});
   const Material& plastic = named(scene, "plastic");
   EXPECT_EQ(plastic.type, MaterialType::MetallicRoughness);

@@ -31,9 +31,10 @@ enum class MaterialType : uint32_t {
   Mirror = PT_MIRROR,                  // perfect specular reflection tinted by base_color
   RoughConductor = PT_ROUGH_CONDUCTOR,  // GGX microfacet reflection, roughness = alpha, Fresnel-Schlick with base_color as F0
   Dielectric = PT_DIELECTRIC,          // smooth glass with index of refraction ior
-  // glTF metallic-roughness: a GGX conductor with base_color as F0, weighted by metallic, over a
-  // diffuse base_color under a dielectric GGX coat of index ior (Mitsuba's roughplastic), weighted
-  // 1 - metallic; roughness = alpha of both GGX lobes.
+  // glTF metallic-roughness, the glTF 2.0 specification's BRDF (Appendix B): a GGX conductor
+  // with base_color as F0, weighted by metallic, and, weighted 1 - metallic, a Lambertian
+  // base_color and a GGX specular layer mixed by Schlick's Fresnel of index ior (f0 0.04 at 1.5);
+  // roughness = alpha of both GGX lobes, whose Smith G is the height-correlated one.
   MetallicRoughness = PT_METALLIC_ROUGHNESS,
 };
 

@@ -42,8 +42,10 @@ Material map_material(const SourceMaterial& source) {
   if (source.metallic) {  // PBR metal/roughness source
     const float perceptual = std::clamp(source.roughness.value_or(1.0f), 0.0f, 1.0f);
     material.roughness = perceptual * perceptual;
-    if (*source.metallic >= 1.0f && source.metal_rough_texture.empty()) {
-      material.type = material.roughness < kMirrorAlpha ? MaterialType::Mirror : MaterialType::RoughConductor;
+    // A smooth metal is a mirror; every other PBR material, rough metals included, follows the
+    // specification's BRDF (whose height-correlated masking the rough conductor does not share).
+    if (*source.metallic >= 1.0f && source.metal_rough_texture.empty() && material.roughness < kMirrorAlpha) {
+      material.type = MaterialType::Mirror;
       return material;
     }
     material.type = MaterialType::MetallicRoughness;

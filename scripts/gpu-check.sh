@@ -74,7 +74,8 @@ echo "$devices" >"$work/devices.json"
 # The CPU to compare with: PoCL's device where there is one, else kdray's C++ build of the kernels.
 cpu=host
 grep -q '"gpu": *false' <<<"$devices" && cpu=cpu
-export KDRAY_CACHE_DIR="$work/program-cache"
+# A program cache of its own unless one is named, so that build times are compile times.
+export KDRAY_CACHE_DIR="${KDRAY_CACHE_DIR:-$work/program-cache}"
 
 # 2. The test programs, each under a time limit so that one hung kernel cannot eat the budget.
 for tests in kdtree_opencl_tests render_tests; do

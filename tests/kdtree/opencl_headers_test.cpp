@@ -73,9 +73,9 @@ class OpenClDevice {
 
   // Builds source as librender builds every program, as OpenCL C 1.2 with the device's own
   // options, with the kernels/ folder on the include path; returns the build log on failure, an
-  // empty string on success. On a GPU both matter: NVIDIA's driver (580) otherwise takes the
-  // headers' pointers as __generic and refuses to pass them to their private array parameters,
-  // and its float division is not the CPU's (a hit's t 5 ulps off).
+  // empty string on success. On a GPU both matter: NVIDIA's driver otherwise takes the headers'
+  // pointers as __generic and refuses to pass them to their private array parameters, and its
+  // float division is not the CPU's (BENCHMARKS.md, "GPU check").
   std::string build(const std::string& options, const char* source = kProgramSource) {
     cl_int status = CL_SUCCESS;
     program_ = clCreateProgramWithSource(context_, 1, &source, nullptr, &status);

@@ -45,7 +45,9 @@ private_bytes() {
 # no body of its own in OpenCL C (C99's inline): a driver that does not inline it either cannot
 # link the program. amdgcn inlines every call, so its build checks those bodies.
 unresolved_functions() {
-  [[ $1 == nvptx64 ]] && awk '/^\.extern \.func/ && $NF !~ /^_Z8atom_add/ {print $NF}' "$2" | tr '\n' ' '
+  if [[ $1 == nvptx64 ]]; then
+    awk '/^\.extern \.func/ && $NF !~ /^_Z8atom_add/ {print $NF}' "$2" | tr '\n' ' '
+  fi
 }
 
 # compile NAME FILE OPTIONS: one program on every target; a line per target; 1 on any diagnostic.

@@ -24,20 +24,23 @@
 # Exit status: 0 the GPU agrees with the CPU everywhere (or no GPU: skipped); 1 a difference, a
 # failed test or a failure of the script; 2 bad command line.
 set -euo pipefail
-cd "$(dirname "$0")/.."
-repo=$PWD
+repo=$(realpath "$(dirname "$0")/..")
 
-bin="" scenes="" corpus=../shared/corpus out=gpu-check
+# Folders named on the command line are taken from where it was given, then the script works
+# from the repository.
+bin="" scenes="" corpus=$repo/../shared/corpus out=gpu-check
 while (($#)); do
   case "$1" in
     --bin | --scenes | --corpus | --out)
       (($# >= 2)) || { echo "gpu-check: error: $1 needs a folder" >&2; exit 2; }
-      declare "${1#--}=$2"
+      declare "${1#--}=$(realpath -m "$2")"
       shift 2
       ;;
     *) echo "gpu-check: error: unknown argument $1 (see the comment at the top of $0)" >&2; exit 2 ;;
   esac
 done
+out=$(realpath -m "$out")
+cd "$repo"
 
 # The OpenCL devices as JSON (kdrender --device list), or nothing where there is no platform.
 device_list() { "$1" --device list --json 2>/dev/null || true; }
@@ -67,7 +70,6 @@ if ! has_gpu "$devices"; then
   exit 0
 fi
 mkdir -p "$out"
-out=$(realpath "$out")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 echo "$devices" >"$work/devices.json"

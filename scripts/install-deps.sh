@@ -10,7 +10,7 @@ packages=(
   libopenimageio-dev openimageio-tools libimath-dev
   libgtest-dev googletest
   python3-matplotlib python3-numpy bc
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev clang-15 libclc-15
   xz-utils
   munge slurm-wlm
 )

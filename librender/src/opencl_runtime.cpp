@@ -2,6 +2,7 @@
 #include "opencl_runtime.h"
 
 #include <kdray/error.h>
+#include <kdray/kernel_builds.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -152,7 +153,7 @@ Runtime::Runtime(const DeviceInfo& info) : info_(info) {
   check(status, "clCreateCommandQueue");
   cl_device_fp_config fp_config = 0;
   check(clGetDeviceInfo(device_, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp_config, &fp_config, nullptr), "clGetDeviceInfo");
-  if (fp_config & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) common_options_ = "-cl-fp32-correctly-rounded-divide-sqrt";
+  common_options_ = device_build_options(fp_config);
 }
 
 Runtime::~Runtime() {

@@ -56,8 +56,7 @@ class Runtime {
   Runtime& operator=(const Runtime&) = delete;
 
   const DeviceInfo& info() const { return info_; }
-  // Options every program gets: correctly rounded float division and sqrt where the device
-  // offers them, so the kernels' arithmetic is the C++ build's (kernels/kd_math.h).
+  // Options every program gets: device_build_options of its CL_DEVICE_SINGLE_FP_CONFIG.
   const std::string& common_options() const { return common_options_; }
   cl_context context() const { return context_; }
   cl_command_queue queue() const { return queue_; }

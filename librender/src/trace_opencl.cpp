@@ -10,6 +10,25 @@
 
 namespace kdray {
 
+unsigned kernel_stack_size(TraversalStack stack) {
+  switch (stack) {
+    case TraversalStack::Depth1: return 1;
+    case TraversalStack::Full: return BuildSettings::kMaxDepthLimit;
+    case TraversalStack::Short: break;
+  }
+  return 0;
+}
+
+TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu) {
+  std::string options = "-cl-std=CL1.2";
+  if (device.short_stack_size) options += " -DKD_SHORT_STACK_SIZE=" + std::to_string(device.short_stack_size);
+  // One ray per work-item everywhere: a GPU vectorises across work-items. On a CPU device
+  // (PoCL) each work-item runs as scalar code and waits on its node fetches, so the far child
+  // of a split is prefetched when pushed; GPU compilers need not know __builtin_prefetch.
+  if (gpu) return {options, "one-ray-per-work-item"};
+  return {options + " -DKD_PREFETCH_NODES", "one-ray-per-work-item+prefetch"};
+}
+
 std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
                                          const DeviceSelection& device, TraceOpenClStats* stats_out) {
   using Clock = std::chrono::steady_clock;
@@ -19,18 +38,9 @@ std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree,
   TraceOpenClStats stats;
   cl::Runtime& runtime = cl::runtime_for(device);
   stats.device = runtime.info().name;
-  std::string options = "-cl-std=CL1.2";
-  if (device.short_stack_size) options += " -DKD_SHORT_STACK_SIZE=" + std::to_string(device.short_stack_size);
-  // One ray per work-item everywhere: a GPU vectorises across work-items. On a CPU device
-  // (PoCL) each work-item runs as scalar code and waits on its node fetches, so the far child
-  // of a split is prefetched when pushed; GPU compilers need not know __builtin_prefetch.
-  if (runtime.info().is_gpu) {
-    stats.kernel_variant = "one-ray-per-work-item";
-  } else {
-    options += " -DKD_PREFETCH_NODES";
-    stats.kernel_variant = "one-ray-per-work-item+prefetch";
-  }
-  cl::ProgramBuild build = runtime.program("kd_trace.cl", options);
+  const TraceKernelBuild kernel_build = trace_kernel_build(device, runtime.info().is_gpu);
+  stats.kernel_variant = kernel_build.variant;
+  cl::ProgramBuild build = runtime.program("kd_trace.cl", kernel_build.options);
   stats.build_seconds = build.seconds;
   stats.build_source = build.source;
 

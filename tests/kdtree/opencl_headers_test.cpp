@@ -4,6 +4,7 @@
 #include "test_scenes.h"
 
 #include <kdray/kdtree.h>
+#include <kdray/kernel_builds.h>
 #include <kdray/ray_sets.h>
 #include <kdray/traverse.h>
 
@@ -59,6 +60,9 @@ class OpenClDevice {
     cl_int status = CL_SUCCESS;
     context_ = clCreateContext(nullptr, 1, &device_, nullptr, nullptr, &status);
     if (status != CL_SUCCESS) context_ = nullptr;
+    cl_device_fp_config fp_config = 0;
+    clGetDeviceInfo(device_, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp_config, &fp_config, nullptr);
+    device_options_ = device_build_options(fp_config);
   }
   ~OpenClDevice() {
     if (program_) clReleaseProgram(program_);
@@ -67,13 +71,17 @@ class OpenClDevice {
   }
   bool available() const { return context_ != nullptr; }
 
-  // Builds source with the kernels/ folder on the include path; returns the build log on
-  // failure, an empty string on success.
+  // Builds source as librender builds every program, as OpenCL C 1.2 with the device's own
+  // options, with the kernels/ folder on the include path; returns the build log on failure, an
+  // empty string on success. On a GPU both matter: NVIDIA's driver otherwise takes the headers'
+  // pointers as __generic and refuses to pass them to their private array parameters, and its
+  // float division is not the CPU's (BENCHMARKS.md, "GPU check").
   std::string build(const std::string& options, const char* source = kProgramSource) {
     cl_int status = CL_SUCCESS;
     program_ = clCreateProgramWithSource(context_, 1, &source, nullptr, &status);
     if (status != CL_SUCCESS) return "clCreateProgramWithSource failed";
-    const std::string all_options = "-I " + std::string(KDRAY_SOURCE_DIR) + "/kernels " + options;
+    const std::string all_options =
+        "-cl-std=CL1.2 " + device_options_ + " -I " + std::string(KDRAY_SOURCE_DIR) + "/kernels " + options;
     if (clBuildProgram(program_, 1, &device_, all_options.c_str(), nullptr, nullptr) == CL_SUCCESS) return "";
     size_t size = 0;
     clGetProgramBuildInfo(program_, device_, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
@@ -116,6 +124,7 @@ class OpenClDevice {
   cl_context context_ = nullptr;
   cl_command_queue queue_ = nullptr;
   cl_program program_ = nullptr;
+  std::string device_options_;
   std::vector<cl_mem> buffers_;
   uint32_t zero_ = 0;
 };
@@ -140,7 +149,7 @@ TEST(KdOpenCl, StaticAssertionsStopTheKernelBuild) {
   OpenClDevice other;
   const char* holding = "#include \"pt_kernel_args.h\"\n"
                         "__kernel void probe(__global int* out) { out[0] = PT_MAX_FILM_CHANNELS; }\n";
-  EXPECT_EQ(other.build("-cl-std=CL1.2", holding), "") << "the layout and code checks of the shared headers hold";
+  EXPECT_EQ(other.build("", holding), "") << "the layout and code checks of the shared headers hold";
 }
 
 // Every kernel of the path-tracing programs starts with PT_SCENE_BUFFERS' buffers and then the
@@ -154,7 +163,7 @@ TEST(KdOpenCl, PathTracingKernelsStartWithTheSceneArguments) {
   for (const char* source : {"#include \"pt_megakernel.cl\"\n", "#include \"pt_wavefront.cl\"\n"}) {
     OpenClDevice device;
     if (!device.available()) GTEST_SKIP() << "no OpenCL device";
-    ASSERT_EQ(device.build("-cl-std=CL1.2 -cl-kernel-arg-info", source), "");
+    ASSERT_EQ(device.build("-cl-kernel-arg-info", source), "");
     cl_uint kernel_count = 0;
     ASSERT_EQ(clCreateKernelsInProgram(device.program(), 0, nullptr, &kernel_count), CL_SUCCESS);
     std::vector<cl_kernel> kernels(kernel_count);

@@ -26,15 +26,6 @@ struct TraceRun {
   kdray::TraceOpenClStats opencl;
 };
 
-unsigned kernel_stack_size(kdray::TraversalStack stack) {
-  switch (stack) {
-    case kdray::TraversalStack::Depth1: return 1;
-    case kdray::TraversalStack::Full: return kdray::BuildSettings::kMaxDepthLimit;
-    case kdray::TraversalStack::Short: break;
-  }
-  return 0;  // the kernel's default KD_SHORT_STACK_SIZE, as on the CPU
-}
-
 // Where the rays are traced: on the host, libkdtree's CPU traversal; on an OpenCL device,
 // librender's kd_trace kernel. Both run the same kernels/kd_traverse.h.
 TraceRun trace_on(bool host, const kdray::Scene& scene, const kdray::KdTree& tree,
@@ -49,7 +40,7 @@ TraceRun trace_on(bool host, const kdray::Scene& scene, const kdray::KdTree& tre
   if (host) {
     cpu_traversal->closest(rays, run.hits, options);
   } else {
-    opencl_device.short_stack_size = kernel_stack_size(options.stack);
+    opencl_device.short_stack_size = kdray::kernel_stack_size(options.stack);
     run.hits = kdray::trace_rays_opencl(scene, tree, rays, opencl_device, &run.opencl);
   }
   run.seconds = host ? std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()

@@ -4,6 +4,7 @@
 #include <kdray/kdtree.h>
 #include <kdray/opencl_device.h>
 #include <kdray/scene.h>
+#include <kdray/traverse.h>
 
 #include <kernels/kd_types.h>
 
@@ -19,6 +20,18 @@ struct TraceOpenClStats {
   double trace_seconds = 0;  // kernel time only, rays already on the device
   std::string kernel_variant;  // how kd_trace.cl was built for this device (trace_rays_opencl)
 };
+
+// DeviceSelection::short_stack_size for a traversal stack: Depth1 one entry, Full as deep as a
+// tree can be (never restarts), Short 0, the kernel's default KD_SHORT_STACK_SIZE as on the CPU.
+unsigned kernel_stack_size(TraversalStack stack);
+
+// kd_trace.cl's build options and its variant's name (TraceOpenClStats::kernel_variant) for a
+// GPU or a CPU device, before the device's own (device_build_options, kernel_builds.h).
+struct TraceKernelBuild {
+  std::string options;
+  std::string variant;
+};
+TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu);
 
 // Same contract as trace_closest (libkdtree): t = +inf and KD_NO_HIT on a miss.
 std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,

@@ -10,10 +10,13 @@
  * must give the kernel's bits (kernels/kd_math.h); C++ that must match is compiled with
  * -ffp-contract=off. */
 #pragma OPENCL FP_CONTRACT OFF
-#define KD_INLINE inline
+/* static: OpenCL C's plain inline is C99's, which emits no body of its own, so a call the compiler
+ * keeps (clang for nvptx64 keeps some) is left to a driver to resolve, and one that does not
+ * inline it cannot link the program. */
+#define KD_INLINE static inline
 /* For the small functions of the traversal's inner loops: PoCL's LLVM keeps them as calls, whose
  * pointer arguments (t, u, v, near and far child) then go through memory. */
-#define KD_HOT_INLINE inline __attribute__((always_inline))
+#define KD_HOT_INLINE static inline __attribute__((always_inline))
 #define KD_GLOBAL __global
 #define KD_CONSTANT __constant
 typedef uint kd_u32;

@@ -51,42 +51,42 @@ struct float4 {
 #define KD_FLOAT2(x, y) (float2{(x), (y)})
 #define KD_FLOAT3(x, y, z) (float3{(x), (y), (z), 0.0f})
 #define KD_FLOAT4(x, y, z, w) (float4{(x), (y), (z), (w)})
-inline float3 kd_xyz(float4 v) { return float3{v.x, v.y, v.z, 0.0f}; }
-inline float3 kd_splat3(float s) { return float3{s, s, s, 0.0f}; }
+KD_INLINE float3 kd_xyz(float4 v) { return float3{v.x, v.y, v.z, 0.0f}; }
+KD_INLINE float3 kd_splat3(float s) { return float3{s, s, s, 0.0f}; }
 
-inline float2 operator+(float2 a, float2 b) { return {a.x + b.x, a.y + b.y}; }
-inline float2 operator-(float2 a, float2 b) { return {a.x - b.x, a.y - b.y}; }
-inline float2 operator*(float s, float2 a) { return {s * a.x, s * a.y}; }
+KD_INLINE float2 operator+(float2 a, float2 b) { return {a.x + b.x, a.y + b.y}; }
+KD_INLINE float2 operator-(float2 a, float2 b) { return {a.x - b.x, a.y - b.y}; }
+KD_INLINE float2 operator*(float s, float2 a) { return {s * a.x, s * a.y}; }
 
-inline float3 operator+(float3 a, float3 b) { return KD_FLOAT3(a.x + b.x, a.y + b.y, a.z + b.z); }
-inline float3 operator-(float3 a, float3 b) { return KD_FLOAT3(a.x - b.x, a.y - b.y, a.z - b.z); }
-inline float3 operator*(float3 a, float3 b) { return KD_FLOAT3(a.x * b.x, a.y * b.y, a.z * b.z); }
-inline float3 operator/(float3 a, float3 b) { return KD_FLOAT3(a.x / b.x, a.y / b.y, a.z / b.z); }
-inline float3 operator-(float3 a) { return KD_FLOAT3(-a.x, -a.y, -a.z); }
+KD_INLINE float3 operator+(float3 a, float3 b) { return KD_FLOAT3(a.x + b.x, a.y + b.y, a.z + b.z); }
+KD_INLINE float3 operator-(float3 a, float3 b) { return KD_FLOAT3(a.x - b.x, a.y - b.y, a.z - b.z); }
+KD_INLINE float3 operator*(float3 a, float3 b) { return KD_FLOAT3(a.x * b.x, a.y * b.y, a.z * b.z); }
+KD_INLINE float3 operator/(float3 a, float3 b) { return KD_FLOAT3(a.x / b.x, a.y / b.y, a.z / b.z); }
+KD_INLINE float3 operator-(float3 a) { return KD_FLOAT3(-a.x, -a.y, -a.z); }
 /* A scalar operand stands for a vector of copies of itself, as in OpenCL C. */
-inline float3 operator+(float3 a, float s) { return a + kd_splat3(s); }
-inline float3 operator+(float s, float3 a) { return kd_splat3(s) + a; }
-inline float3 operator-(float3 a, float s) { return a - kd_splat3(s); }
-inline float3 operator-(float s, float3 a) { return kd_splat3(s) - a; }
-inline float3 operator*(float3 a, float s) { return a * kd_splat3(s); }
-inline float3 operator*(float s, float3 a) { return kd_splat3(s) * a; }
-inline float3 operator/(float3 a, float s) { return a / kd_splat3(s); }
-inline float3 operator/(float s, float3 a) { return kd_splat3(s) / a; }
-inline float3& operator+=(float3& a, float3 b) { return a = a + b; }
-inline float3& operator-=(float3& a, float3 b) { return a = a - b; }
-inline float3& operator*=(float3& a, float3 b) { return a = a * b; }
-inline float3& operator*=(float3& a, float s) { return a = a * s; }
-inline float3& operator/=(float3& a, float s) { return a = a / s; }
+KD_INLINE float3 operator+(float3 a, float s) { return a + kd_splat3(s); }
+KD_INLINE float3 operator+(float s, float3 a) { return kd_splat3(s) + a; }
+KD_INLINE float3 operator-(float3 a, float s) { return a - kd_splat3(s); }
+KD_INLINE float3 operator-(float s, float3 a) { return kd_splat3(s) - a; }
+KD_INLINE float3 operator*(float3 a, float s) { return a * kd_splat3(s); }
+KD_INLINE float3 operator*(float s, float3 a) { return kd_splat3(s) * a; }
+KD_INLINE float3 operator/(float3 a, float s) { return a / kd_splat3(s); }
+KD_INLINE float3 operator/(float s, float3 a) { return kd_splat3(s) / a; }
+KD_INLINE float3& operator+=(float3& a, float3 b) { return a = a + b; }
+KD_INLINE float3& operator-=(float3& a, float3 b) { return a = a - b; }
+KD_INLINE float3& operator*=(float3& a, float3 b) { return a = a * b; }
+KD_INLINE float3& operator*=(float3& a, float s) { return a = a * s; }
+KD_INLINE float3& operator/=(float3& a, float s) { return a = a / s; }
 
-inline float4 operator+(float4 a, float4 b) { return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w}; }
-inline float4 operator*(float s, float4 a) { return {s * a.x, s * a.y, s * a.z, s * a.w}; }
+KD_INLINE float4 operator+(float4 a, float4 b) { return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w}; }
+KD_INLINE float4 operator*(float s, float4 a) { return {s * a.x, s * a.y, s * a.z, s * a.w}; }
 
-inline float clamp(float x, float lo, float hi) { return std::fmin(std::fmax(x, lo), hi); }
-inline int clamp(int x, int lo, int hi) { return x < lo ? lo : (x > hi ? hi : x); }
+KD_INLINE float clamp(float x, float lo, float hi) { return std::fmin(std::fmax(x, lo), hi); }
+KD_INLINE int clamp(int x, int lo, int hi) { return x < lo ? lo : (x > hi ? hi : x); }
 
-inline float2 vload2(size_t i, const float* p) { return {p[2 * i], p[2 * i + 1]}; }
-inline float3 vload3(size_t i, const float* p) { return KD_FLOAT3(p[3 * i], p[3 * i + 1], p[3 * i + 2]); }
-inline float4 vload4(size_t i, const float* p) { return {p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]}; }
+KD_INLINE float2 vload2(size_t i, const float* p) { return {p[2 * i], p[2 * i + 1]}; }
+KD_INLINE float3 vload3(size_t i, const float* p) { return KD_FLOAT3(p[3 * i], p[3 * i + 1], p[3 * i + 2]); }
+KD_INLINE float4 vload4(size_t i, const float* p) { return {p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]}; }
 
 #endif
 

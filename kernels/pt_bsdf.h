@@ -23,29 +23,29 @@ typedef struct PtBsdfSample {
 #endif
 
 #ifdef PT_GGX_CODE
-inline float pt_ggx_d(float cos_h, float alpha2) {
+KD_INLINE float pt_ggx_d(float cos_h, float alpha2) {
   float c2 = cos_h * cos_h;
   float denom = c2 * (alpha2 - 1.0f) + 1.0f;
   return alpha2 / (PT_PI * denom * denom);
 }
-inline float pt_ggx_g1(float cos_v, float alpha2) {
+KD_INLINE float pt_ggx_g1(float cos_v, float alpha2) {
   float c2 = cos_v * cos_v;
   float tan2 = fmax(0.0f, 1.0f - c2) / fmax(c2, 1e-12f);
   return 2.0f / (1.0f + sqrt(1.0f + alpha2 * tan2));
 }
 /* Schlick's (1 - cos)^5, the share of 1 - f0 that a Fresnel factor adds to f0. */
-inline float pt_schlick_weight(float cos_theta) {
+KD_INLINE float pt_schlick_weight(float cos_theta) {
   float m = clamp(1.0f - cos_theta, 0.0f, 1.0f);
   return (m * m) * (m * m) * m;
 }
-inline float3 pt_schlick(float3 f0, float cos_theta) { return f0 + (1.0f - f0) * pt_schlick_weight(cos_theta); }
-inline float pt_ggx_alpha2(float roughness) {
+KD_INLINE float3 pt_schlick(float3 f0, float cos_theta) { return f0 + (1.0f - f0) * pt_schlick_weight(cos_theta); }
+KD_INLINE float pt_ggx_alpha2(float roughness) {
   float alpha = fmax(roughness, 1e-3f);
   return alpha * alpha;
 }
 /* D(h) for the half vector h of wo and wi (both on the side of n), with wo . h and the pdf of
  * drawing wi by pt_ggx_sample_wi. */
-inline float pt_ggx_half_vector_d(float alpha2, float3 n, float3 wo, float3 wi, float* pdf, float* o_h) {
+KD_INLINE float pt_ggx_half_vector_d(float alpha2, float3 n, float3 wo, float3 wi, float* pdf, float* o_h) {
   float3 h = kd_normalize(wo + wi);
   float cos_h = kd_dot(n, h);
   *o_h = kd_dot(wo, h);
@@ -55,7 +55,7 @@ inline float pt_ggx_half_vector_d(float alpha2, float3 n, float3 wo, float3 wi, 
 }
 /* D * G / (4 cos(wo)) (f * cos(wi) without the Fresnel factor) with the separable Smith G, the pdf
  * of sampling wi by pt_ggx_sample_wi, and wo . h. */
-inline float pt_ggx_eval_common(float roughness, float3 n, float3 wo, float3 wi, float* pdf, float* o_h) {
+KD_INLINE float pt_ggx_eval_common(float roughness, float3 n, float3 wo, float3 wi, float* pdf, float* o_h) {
   *pdf = 0.0f;
   *o_h = 1.0f;
   float cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
@@ -66,13 +66,13 @@ inline float pt_ggx_eval_common(float roughness, float3 n, float3 wo, float3 wi,
   return d * g / (4.0f * cos_o);
 }
 /* f * cos(wi) and the pdf of sampling wi by pt_ggx_sample_wi. */
-inline float3 pt_ggx_eval(float3 color, float roughness, float3 n, float3 wo, float3 wi, float* pdf) {
+KD_INLINE float3 pt_ggx_eval(float3 color, float roughness, float3 n, float3 wo, float3 wi, float* pdf) {
   float o_h;
   float common = pt_ggx_eval_common(roughness, n, wo, wi, pdf, &o_h);
   return common > 0.0f ? pt_schlick(color, o_h) * common : kd_splat3(0.0f);
 }
 /* wo reflected about a half vector drawn from D(h) cos(h). */
-inline float3 pt_ggx_sample_wi(float roughness, float3 n, float3 wo, float u1, float u2) {
+KD_INLINE float3 pt_ggx_sample_wi(float roughness, float3 n, float3 wo, float u1, float u2) {
   float alpha2 = pt_ggx_alpha2(roughness);
   float tan2 = alpha2 * u1 / fmax(1.0f - u1, 1e-7f);
   float cos_h = 1.0f / sqrt(1.0f + tan2);
@@ -87,7 +87,7 @@ inline float3 pt_ggx_sample_wi(float roughness, float3 n, float3 wo, float u1, f
 
 #ifdef KD_FEATURE_GLASS
 /* Unpolarised Fresnel reflectance for cos_i on the side of index eta_i into eta_t. */
-inline float pt_fresnel_dielectric(float cos_i, float cos_t, float eta_i, float eta_t) {
+KD_INLINE float pt_fresnel_dielectric(float cos_i, float cos_t, float eta_i, float eta_t) {
   float rs = (eta_i * cos_i - eta_t * cos_t) / (eta_i * cos_i + eta_t * cos_t);
   float rp = (eta_t * cos_i - eta_i * cos_t) / (eta_t * cos_i + eta_i * cos_t);
   return 0.5f * (rs * rs + rp * rp);
@@ -99,7 +99,7 @@ inline float pt_fresnel_dielectric(float cos_i, float cos_t, float eta_i, float 
  * the specification's G is the height-correlated Smith masking-shadowing function,
  * 2 cos_o cos_i / (cos_o sqrt(a2 + (1 - a2) cos_i^2) + cos_i sqrt(a2 + (1 - a2) cos_o^2)), not the
  * separable one of the rough conductor. Also the pdf of pt_ggx_sample_wi and wo . h. */
-inline float pt_gltf_specular(float roughness, float3 n, float3 wo, float3 wi, float* pdf, float* o_h) {
+KD_INLINE float pt_gltf_specular(float roughness, float3 n, float3 wo, float3 wi, float* pdf, float* o_h) {
   *pdf = 0.0f;
   *o_h = 1.0f;
   float cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
@@ -111,7 +111,7 @@ inline float pt_gltf_specular(float roughness, float3 n, float3 wo, float3 wi, f
   return d * cos_i / (2.0f * g_denominator);
 }
 /* The dielectric's Schlick Fresnel, f0 from its index of refraction (0.04 at glTF's 1.5). */
-inline float pt_gltf_dielectric_fresnel(float ior, float cos_theta) {
+KD_INLINE float pt_gltf_dielectric_fresnel(float ior, float cos_theta) {
   float r = (ior - 1.0f) / (ior + 1.0f);
   float f0 = r * r;
   return f0 + (1.0f - f0) * pt_schlick_weight(cos_theta);
@@ -120,7 +120,7 @@ inline float pt_gltf_dielectric_fresnel(float ior, float cos_theta) {
  * the dielectric's specular share at wo, estimated with Fresnel at wo . n in place of wo . h (the
  * layer reflects F, the base (1 - F) times its colour), so that a sample's weight stays close to
  * the albedo whichever lobe drew it. */
-inline float pt_gltf_ggx_probability(const PtMaterial* m, float3 color, float cos_o) {
+KD_INLINE float pt_gltf_ggx_probability(const PtMaterial* m, float3 color, float cos_o) {
   float f = pt_gltf_dielectric_fresnel(m->ior, cos_o);
   float diffuse = (1.0f - f) * pt_luminance(color);
   float p_specular = f + diffuse > 0.0f ? f / (f + diffuse) : 1.0f;
@@ -130,7 +130,7 @@ inline float pt_gltf_ggx_probability(const PtMaterial* m, float3 color, float co
  * mix(dielectric, metal, metallic) with metal = specular * Schlick(color, wo . h) and
  * dielectric = (1 - F) color / pi + F specular, F = Schlick(f0 of ior, wo . h). The pdf is the
  * mixture of the two lobes pt_bsdf_sample draws from. */
-inline float3 pt_metal_rough_eval(const PtMaterial* m, float3 color, float3 n, float3 wo, float3 wi, float* pdf) {
+KD_INLINE float3 pt_metal_rough_eval(const PtMaterial* m, float3 color, float3 n, float3 wo, float3 wi, float* pdf) {
   float ggx_pdf, o_h;
   float specular = pt_gltf_specular(m->roughness, n, wo, wi, &ggx_pdf, &o_h);
   float cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
@@ -145,10 +145,10 @@ inline float3 pt_metal_rough_eval(const PtMaterial* m, float3 color, float3 n, f
 }
 #endif
 
-inline int pt_is_delta(uint type) { return type == PT_MIRROR || type == PT_DIELECTRIC; }
+KD_INLINE int pt_is_delta(uint type) { return type == PT_MIRROR || type == PT_DIELECTRIC; }
 
 /* f * |cos(wi)| for the non-delta lobes, and the pdf pt_bsdf_sample would give wi. */
-inline float3 pt_bsdf_eval(const PtMaterial* m, float3 color, float3 n, float3 wo, float3 wi, float* pdf) {
+KD_INLINE float3 pt_bsdf_eval(const PtMaterial* m, float3 color, float3 n, float3 wo, float3 wi, float* pdf) {
 #ifdef KD_FEATURE_METALLIC_ROUGHNESS
   if (m->type == PT_METALLIC_ROUGHNESS) return pt_metal_rough_eval(m, color, n, wo, wi, pdf);
 #endif
@@ -166,7 +166,7 @@ inline float3 pt_bsdf_eval(const PtMaterial* m, float3 color, float3 n, float3 w
 
 /* entering: wo is on the front (winding) side, which for a dielectric is the outside. u_lobe
  * picks the lobe of layered materials. */
-inline PtBsdfSample pt_bsdf_sample(const PtMaterial* m, float3 color, float3 n, float3 wo, int entering, float u1,
+KD_INLINE PtBsdfSample pt_bsdf_sample(const PtMaterial* m, float3 color, float3 n, float3 wo, int entering, float u1,
                                    float u2, float u_lobe) {
   PtBsdfSample s;
   s.is_delta = 0;

@@ -66,7 +66,7 @@ KD_INLINE float pt_env_sample_uv(KD_GLOBAL const float* cdf, kd_u32 width, kd_u3
 #include "pt_sampling.h"
 
 /* Map coordinates of world direction d (unit). */
-inline float2 pt_env_uv(KD_GLOBAL const PtRenderParams* params, float3 d) {
+KD_INLINE float2 pt_env_uv(KD_GLOBAL const PtRenderParams* params, float3 d) {
   float c = params->env_rotate_cos, s = params->env_rotate_sin;
   float x = c * d.x - s * d.z, z = s * d.x + c * d.z; /* R_y(-angle) d */
   float u = kd_atan2(x, -z) * (0.5f * PT_INV_PI);
@@ -76,7 +76,7 @@ inline float2 pt_env_uv(KD_GLOBAL const PtRenderParams* params, float3 d) {
 }
 
 /* World direction of map coordinates (u, v); *sin_theta receives sin(pi v). */
-inline float3 pt_env_direction(KD_GLOBAL const PtRenderParams* params, float2 uv, float* sin_theta) {
+KD_INLINE float3 pt_env_direction(KD_GLOBAL const PtRenderParams* params, float2 uv, float* sin_theta) {
   float phi = 2.0f * PT_PI * uv.x, theta = PT_PI * uv.y;
   float st, ct, sp, cp;
   kd_sincos(theta, &st, &ct);
@@ -87,7 +87,7 @@ inline float3 pt_env_direction(KD_GLOBAL const PtRenderParams* params, float2 uv
   return KD_FLOAT3(c * x + s * z, y, -s * x + c * z); /* R_y(angle) */
 }
 
-inline float3 pt_env_texel(KD_GLOBAL const float* texels, uint width, uint height, int x, int y) {
+KD_INLINE float3 pt_env_texel(KD_GLOBAL const float* texels, uint width, uint height, int x, int y) {
   x %= (int)width;
   x += x < 0 ? (int)width : 0;
   y = clamp(y, 0, (int)height - 1);
@@ -95,7 +95,7 @@ inline float3 pt_env_texel(KD_GLOBAL const float* texels, uint width, uint heigh
 }
 
 /* Bilinear radiance at map coordinates (u, v), strength applied; rows as the mapping above. */
-inline float3 pt_env_lookup(KD_GLOBAL const float* texels, KD_GLOBAL const PtRenderParams* params, float2 uv) {
+KD_INLINE float3 pt_env_lookup(KD_GLOBAL const float* texels, KD_GLOBAL const PtRenderParams* params, float2 uv) {
   uint w = params->env_width, h = params->env_height;
   float fx = uv.x * (float)w - 0.5f, fy = uv.y * (float)(h - 1);
   float x0 = floor(fx), y0 = floor(fy);
@@ -107,7 +107,7 @@ inline float3 pt_env_lookup(KD_GLOBAL const float* texels, KD_GLOBAL const PtRen
 }
 
 /* Solid-angle density with which next-event estimation picks direction d (light choice included). */
-inline float pt_env_pdf(KD_GLOBAL const float* cdf, KD_GLOBAL const PtRenderParams* params, float2 uv) {
+KD_INLINE float pt_env_pdf(KD_GLOBAL const float* cdf, KD_GLOBAL const PtRenderParams* params, float2 uv) {
   float sin_theta = kd_sin(PT_PI * uv.y);
   if (!(sin_theta > 0.0f)) return 0.0f;
   return params->select_environment * pt_env_pdf_uv(cdf, params->env_width, params->env_height, uv.x, uv.y) /

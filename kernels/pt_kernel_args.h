@@ -8,7 +8,7 @@
 #include "pt_path.h"
 
 /* stats[0]: rays traced, stats[1]: non-finite sample values. */
-inline void pt_add_stats(__global ulong* stats, ulong rays, uint nonfinite) {
+KD_INLINE void pt_add_stats(__global ulong* stats, ulong rays, uint nonfinite) {
   atom_add(&stats[0], rays);
   if (nonfinite) atom_add(&stats[1], (ulong)nonfinite);
 }

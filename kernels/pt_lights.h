@@ -17,10 +17,10 @@
 #else
 #define PT_MIS_OFF(params) 0
 #endif
-inline float pt_mis_light(KD_GLOBAL const PtRenderParams* params, float light_pdf, float bsdf_pdf) {
+KD_INLINE float pt_mis_light(KD_GLOBAL const PtRenderParams* params, float light_pdf, float bsdf_pdf) {
   return PT_MIS_OFF(params) ? 1.0f : pt_power_heuristic(light_pdf, bsdf_pdf);
 }
-inline float pt_mis_bsdf(KD_GLOBAL const PtRenderParams* params, float bsdf_pdf, float light_pdf) {
+KD_INLINE float pt_mis_bsdf(KD_GLOBAL const PtRenderParams* params, float bsdf_pdf, float light_pdf) {
   if (PT_MIS_OFF(params)) return light_pdf > 0.0f ? 0.0f : 1.0f;
   return pt_power_heuristic(bsdf_pdf, light_pdf);
 }
@@ -43,13 +43,13 @@ typedef struct PtLightSample {
 } PtLightSample;
 
 /* Distance that takes a shadow ray from p out of the scene's bounds. */
-inline float pt_escape_distance(KD_GLOBAL const PtRenderParams* params, float3 p) {
+KD_INLINE float pt_escape_distance(KD_GLOBAL const PtRenderParams* params, float3 p) {
   float3 lo = vload3(0, params->bounds_min), hi = vload3(0, params->bounds_max);
   return 1.01f * (kd_length(p - 0.5f * (lo + hi)) + 0.5f * kd_length(hi - lo)) + 1.0f;
 }
 
 #ifdef KD_FEATURE_ENVIRONMENT
-inline PtLightSample pt_env_sample_light(KD_GLOBAL const float* texels, KD_GLOBAL const float* cdf,
+KD_INLINE PtLightSample pt_env_sample_light(KD_GLOBAL const float* texels, KD_GLOBAL const float* cdf,
                                          KD_GLOBAL const PtRenderParams* params, float3 p, float2 u2d) {
   PtLightSample s;
   float u, v;
@@ -66,7 +66,7 @@ inline PtLightSample pt_env_sample_light(KD_GLOBAL const float* texels, KD_GLOBA
 
 #ifdef KD_FEATURE_PUNCTUAL
 /* One of the punctual lights, chosen uniformly with u. */
-inline PtLightSample pt_punctual_sample_light(KD_GLOBAL const PtPunctual* lights, KD_GLOBAL const PtRenderParams* params,
+KD_INLINE PtLightSample pt_punctual_sample_light(KD_GLOBAL const PtPunctual* lights, KD_GLOBAL const PtRenderParams* params,
                                               float3 p, float u) {
   uint count = params->punctual_count;
   uint index = (uint)(u * (float)count);

@@ -13,7 +13,7 @@
 #include "pt_types.h"
 
 #ifdef KD_FEATURE_TEXTURES
-inline float4 pt_texel(KD_GLOBAL const float4* texels, PtTexture tex, int x, int y) {
+KD_INLINE float4 pt_texel(KD_GLOBAL const float4* texels, PtTexture tex, int x, int y) {
   x = x % (int)tex.width;
   y = y % (int)tex.height;
   x += x < 0 ? (int)tex.width : 0;
@@ -21,7 +21,7 @@ inline float4 pt_texel(KD_GLOBAL const float4* texels, PtTexture tex, int x, int
   return texels[tex.first_texel + (uint)y * tex.width + (uint)x];
 }
 /* Bilinear lookup with wrapping; v = 0 is the bottom row (OBJ convention). */
-inline float4 pt_texture_lookup(KD_GLOBAL const PtTexture* textures, KD_GLOBAL const float4* texels, int index,
+KD_INLINE float4 pt_texture_lookup(KD_GLOBAL const PtTexture* textures, KD_GLOBAL const float4* texels, int index,
                                  float2 uv) {
   PtTexture tex = textures[index];
   float fx = uv.x * (float)tex.width - 0.5f;
@@ -34,7 +34,7 @@ inline float4 pt_texture_lookup(KD_GLOBAL const PtTexture* textures, KD_GLOBAL c
   return kd_mix4(top, bottom, ay);
 }
 /* The interpolated UV of barycentric point (u, v) of a triangle with vertex numbers idx. */
-inline float2 pt_triangle_uv(KD_GLOBAL const float* uvs, KD_GLOBAL const kd_u32* idx, float u, float v) {
+KD_INLINE float2 pt_triangle_uv(KD_GLOBAL const float* uvs, KD_GLOBAL const kd_u32* idx, float u, float v) {
   return (1.0f - u - v) * vload2(idx[0], uvs) + u * vload2(idx[1], uvs) + v * vload2(idx[2], uvs);
 }
 #endif
@@ -46,7 +46,7 @@ inline float2 pt_triangle_uv(KD_GLOBAL const float* uvs, KD_GLOBAL const kd_u32*
  * Tangents are smooth across the triangles that share a vertex, so no seam shows between them.
  * The handedness w was set for the normal on the side the triangle winds counter-clockwise:
  * `side` is -1 when n faces the other way (a back face), which keeps the bitangent on +v. */
-inline float3 pt_normal_mapped(float3 n, KD_GLOBAL const float* tangents, KD_GLOBAL const kd_u32* idx, float u,
+KD_INLINE float3 pt_normal_mapped(float3 n, KD_GLOBAL const float* tangents, KD_GLOBAL const kd_u32* idx, float u,
                                float v, float side, float3 mapped) {
   float4 tw = (1.0f - u - v) * vload4(idx[0], tangents) + u * vload4(idx[1], tangents) + v * vload4(idx[2], tangents);
   float3 t = kd_xyz(tw) - kd_dot(kd_xyz(tw), n) * n;
@@ -61,7 +61,7 @@ inline float3 pt_normal_mapped(float3 n, KD_GLOBAL const float* tangents, KD_GLO
 /* Applies the material's textures at a hit: base colour, metallic and roughness into *m and
  * *color, the normal map into *n (kept on the side of ng_facing; ng is the triangle's
  * counter-clockwise normal). */
-inline void pt_apply_textures(PtMaterial* m, float3* color, float3* n, float3 ng, float3 ng_facing,
+KD_INLINE void pt_apply_textures(PtMaterial* m, float3* color, float3* n, float3 ng, float3 ng_facing,
                               KD_GLOBAL const float* uvs, KD_GLOBAL const float* tangents,
                               KD_GLOBAL const PtTexture* textures, KD_GLOBAL const float4* texels,
                               KD_GLOBAL const kd_u32* idx, float u, float v) {
@@ -92,7 +92,7 @@ inline void pt_apply_textures(PtMaterial* m, float3* color, float3* n, float3 ng
 
 #ifdef KD_FEATURE_EMISSIVE_TEXTURE
 /* Emission of an emissive material at barycentric point (u, v) of a triangle. */
-inline float3 pt_textured_emission(const PtMaterial* m, KD_GLOBAL const float* uvs, KD_GLOBAL const PtTexture* textures,
+KD_INLINE float3 pt_textured_emission(const PtMaterial* m, KD_GLOBAL const float* uvs, KD_GLOBAL const PtTexture* textures,
                                    KD_GLOBAL const float4* texels, KD_GLOBAL const kd_u32* idx, float u, float v) {
   float3 emission = vload3(0, m->emission);
   if (m->emissive_texture >= 0)
@@ -105,7 +105,7 @@ inline float3 pt_textured_emission(const PtMaterial* m, KD_GLOBAL const float* u
 /* Whether a ray passes through triangle `tri` at barycentric (u, v). Blended surfaces let it pass
  * with probability 1 - alpha, decided by a hash of the path and the triangle, so every layer a
  * path meets draws its own number and the decision does not depend on the thread. */
-inline int pt_alpha_passes(KD_GLOBAL const kd_u32* indices, KD_GLOBAL const kd_u32* material_ids,
+KD_INLINE int pt_alpha_passes(KD_GLOBAL const kd_u32* indices, KD_GLOBAL const kd_u32* material_ids,
                            KD_GLOBAL const PtMaterial* materials, KD_GLOBAL const float* uvs,
                            KD_GLOBAL const PtTexture* textures, KD_GLOBAL const float4* texels, uint tri, float u,
                            float v, uint path_key) {

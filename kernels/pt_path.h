@@ -74,35 +74,35 @@ typedef struct PtPath {
 KD_STATIC_ASSERT(sizeof(PtPath) == PT_PATH_BYTES, "PT_PATH_BYTES is the size of PtPath");
 
 /* Corner 0, 1 or 2 of a triangle, from the traversal's gathered vertices. */
-inline float3 pt_corner(const KdSceneView* kd, uint triangle, uint corner) {
+KD_INLINE float3 pt_corner(const KdSceneView* kd, uint triangle, uint corner) {
   return vload3(corner, kd->triangle_vertices + KD_TRIANGLE_FLOATS * triangle);
 }
 
-inline RayRecord pt_ray(float3 origin, float3 direction, float tmax) {
+KD_INLINE RayRecord pt_ray(float3 origin, float3 direction, float tmax) {
   RayRecord ray = {origin.x, origin.y, origin.z, direction.x, direction.y, direction.z, 0.0f, tmax};
   return ray;
 }
 /* Both values of the sample's dimension pair starting at even `dimension` (kernels/pt_rng.h). */
-inline float2 pt_sample2(KD_GLOBAL const PtRenderParams* params, uint sample_hash, uint sample, uint dimension) {
+KD_INLINE float2 pt_sample2(KD_GLOBAL const PtRenderParams* params, uint sample_hash, uint sample, uint dimension) {
   PtBits2 bits = pt_hashed_bits2(params->sampler, sample_hash, sample, dimension);
   return KD_FLOAT2(pt_bits_to_unit(bits.x), pt_bits_to_unit(bits.y));
 }
 /* Sample value `dim` (PT_DIM_*, kernels/pt_rng.h) of the path's current bounce, or both values
  * of the pair starting at even `dim`. */
-inline float pt_path_sample(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
+KD_INLINE float pt_path_sample(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
   return pt_bits_to_unit(
       pt_hashed_bits(params->sampler, path->sample_hash, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim));
 }
-inline float2 pt_path_sample2(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
+KD_INLINE float2 pt_path_sample2(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
   return pt_sample2(params, path->sample_hash, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim);
 }
 
-inline RayRecord pt_path_ray(const PtPath* path) { return pt_ray(path->origin, path->direction, INFINITY); }
-inline RayRecord pt_shadow_ray(const PtPath* path) { return pt_ray(path->shadow_origin, path->shadow_span, 1.0f); }
+KD_INLINE RayRecord pt_path_ray(const PtPath* path) { return pt_ray(path->origin, path->direction, INFINITY); }
+KD_INLINE RayRecord pt_shadow_ray(const PtPath* path) { return pt_ray(path->shadow_origin, path->shadow_span, 1.0f); }
 
 #ifdef KD_FEATURE_ALPHA
 /* A number of the path's current bounce for hashing alpha decisions (kernels/pt_material.h). */
-inline uint pt_path_key(const PtPath* path, KD_GLOBAL const PtRenderParams* params) {
+KD_INLINE uint pt_path_key(const PtPath* path, KD_GLOBAL const PtRenderParams* params) {
   return pt_hash32(params->seed ^ pt_hash32(path->pixel ^ pt_hash32(path->sample ^ pt_hash32(path->bounce))));
 }
 #define PT_MAX_ALPHA_LAYERS 64
@@ -110,7 +110,7 @@ inline uint pt_path_key(const PtPath* path, KD_GLOBAL const PtRenderParams* para
 
 /* Whether the shadow ray is blocked; with alpha-tested surfaces, the closest hits are walked and
  * those the ray passes through skipped (at most PT_MAX_ALPHA_LAYERS of them). */
-inline int pt_path_occluded(const PtSceneData* scene, const PtPath* path, KD_GLOBAL const PtRenderParams* params) {
+KD_INLINE int pt_path_occluded(const PtSceneData* scene, const PtPath* path, KD_GLOBAL const PtRenderParams* params) {
   RayRecord ray = pt_shadow_ray(path);
 #ifdef KD_FEATURE_ALPHA
   if (!PT_USES(params, PT_FEATURE_ALPHA)) return kd_intersect_any(&scene->kd, ray);
@@ -130,7 +130,7 @@ inline int pt_path_occluded(const PtSceneData* scene, const PtPath* path, KD_GLO
 #endif
 }
 
-inline void pt_path_begin(PtPath* path, KD_GLOBAL const PtRenderParams* params, uint pixel, uint sample) {
+KD_INLINE void pt_path_begin(PtPath* path, KD_GLOBAL const PtRenderParams* params, uint pixel, uint sample) {
   uint x = pixel % params->width, y = pixel / params->width;
   path->sample_hash = pt_sample_hash(params->sampler, params->seed, pixel, sample);
   float2 jitter = pt_sample2(params, path->sample_hash, sample, PT_DIM_CAMERA_X);
@@ -162,7 +162,7 @@ inline void pt_path_begin(PtPath* path, KD_GLOBAL const PtRenderParams* params, 
 /* Picks an emitter by its share of the emitted power: the first entry whose cdf exceeds u. *u
  * becomes u's position inside that entry's cdf interval, a fresh uniform number in [0, 1) for
  * sampling the picked light (stratified along with the pick). */
-inline uint pt_pick_light(KD_GLOBAL const PtLight* lights, uint count, float* u) {
+KD_INLINE uint pt_pick_light(KD_GLOBAL const PtLight* lights, uint count, float* u) {
   uint lo = 0, hi = count - 1;
   while (lo < hi) {
     uint mid = (lo + hi) / 2;
@@ -176,7 +176,7 @@ inline uint pt_pick_light(KD_GLOBAL const PtLight* lights, uint count, float* u)
 
 /* Next-event estimation on the emissive triangles: picks one by power, then a direction towards
  * it from the shading point p by solid angle or by area (kernels/pt_spherical_triangle.h). */
-inline void pt_next_event(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
+KD_INLINE void pt_next_event(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
                           const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng, float3 wo) {
   float2 pick_v = pt_path_sample2(path, params, PT_DIM_LIGHT_PICK);
   float u = pick_v.x;
@@ -233,7 +233,7 @@ inline void pt_next_event(PtPath* path, const PtSceneData* scene, KD_GLOBAL cons
 
 #if defined(KD_FEATURE_ENVIRONMENT) || defined(KD_FEATURE_PUNCTUAL)
 /* Next-event estimation towards a sampled environment direction or punctual light. */
-inline void pt_shadow_towards(PtPath* path, KD_GLOBAL const PtRenderParams* params, const PtMaterial* m,
+KD_INLINE void pt_shadow_towards(PtPath* path, KD_GLOBAL const PtRenderParams* params, const PtMaterial* m,
                               float3 color, float3 p, float3 n, float3 ng, float3 wo, PtLightSample ls) {
   if (kd_dot(ls.wi, ng) <= 0.0f || pt_max3(ls.value) <= 0.0f) return;
   float bsdf_pdf;
@@ -249,7 +249,7 @@ inline void pt_shadow_towards(PtPath* path, KD_GLOBAL const PtRenderParams* para
 
 /* Picks a kind of light with the probabilities in params (its own sample dimension; rescaled, the
  * same number then picks a punctual light) and estimates its direct light. */
-inline void pt_next_event_any(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
+KD_INLINE void pt_next_event_any(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
                               const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng, float3 wo) {
   float u = pt_path_sample(path, params, PT_DIM_LIGHT_TYPE);
 #ifdef KD_FEATURE_EMISSION
@@ -281,7 +281,7 @@ inline void pt_next_event_any(PtPath* path, const PtSceneData* scene, KD_GLOBAL 
 #ifdef KD_FEATURE_ENVIRONMENT
 /* A ray that leaves the scene sees the environment (camera rays too), MIS-weighted against
  * next-event estimation when a BSDF sample sent it. */
-inline void pt_path_escape(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params) {
+KD_INLINE void pt_path_escape(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params) {
   float2 uv = pt_env_uv(params, path->direction);
   float weight = 1.0f;
   if (path->bsdf_pdf > 0.0f) weight = pt_mis_bsdf(params, path->bsdf_pdf, pt_env_pdf(scene->env_cdf, params, uv));
@@ -292,7 +292,7 @@ inline void pt_path_escape(PtPath* path, const PtSceneData* scene, KD_GLOBAL con
 /* Advances the path by its closest hit. Bounce k is the k-th surface the path meets; light
  * is gathered at it (emission, and next-event estimation for surface k+1's light) and a new
  * direction sampled while k <= max_bounces, as Cycles counts: max_bounces 0 is direct light only. */
-inline void pt_path_shade(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
+KD_INLINE void pt_path_shade(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
                           HitRecord hit) {
   path->shadow_pending = 0;
   if (hit.triangle == KD_NO_HIT) {
@@ -401,13 +401,13 @@ inline void pt_path_shade(PtPath* path, const PtSceneData* scene, KD_GLOBAL cons
   path->bounce = k + 1;
 }
 
-inline void pt_path_resolve_shadow(PtPath* path, int occluded) {
+KD_INLINE void pt_path_resolve_shadow(PtPath* path, int occluded) {
   if (path->shadow_pending && !occluded) path->radiance += path->shadow_contribution;
   path->shadow_pending = 0;
 }
 
 /* Fixed-point value of one sample (see PT_FIXED_BITS); non-finite values count as 0. */
-inline long pt_fixed(float value, uint* nonfinite) {
+KD_INLINE long pt_fixed(float value, uint* nonfinite) {
   if (!isfinite(value)) {
     *nonfinite += 1;
     return 0;
@@ -417,7 +417,7 @@ inline long pt_fixed(float value, uint* nonfinite) {
 }
 
 /* Adds the finished sample into per-pixel channel sums: radiance, then the enabled AOVs. */
-inline void pt_path_accumulate(const PtPath* path, KD_GLOBAL const PtRenderParams* params, long* sums,
+KD_INLINE void pt_path_accumulate(const PtPath* path, KD_GLOBAL const PtRenderParams* params, long* sums,
                                uint* nonfinite) {
   uint c = 0;
   sums[c++] += pt_fixed(path->radiance.x, nonfinite);
@@ -438,7 +438,7 @@ inline void pt_path_accumulate(const PtPath* path, KD_GLOBAL const PtRenderParam
 
 /* Traces sample `sample` of `pixel` to its end and adds it to the pixel's channel sums; returns
  * the number of rays traced. The megakernel's whole per-sample work, and the C++ build's. */
-inline uint pt_render_sample(const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params, uint pixel, uint sample,
+KD_INLINE uint pt_render_sample(const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params, uint pixel, uint sample,
                              long* sums, uint* nonfinite) {
   uint rays = 0;
   PtPath path;
@@ -459,7 +459,7 @@ inline uint pt_render_sample(const PtSceneData* scene, KD_GLOBAL const PtRenderP
 /* Traces samples sample_offset .. sample_offset + sample_count - 1 of `pixel` and adds their sums
  * to the pixel's film channels; returns the number of rays traced. The per-pixel work of the
  * megakernel and of the host renderer (librender/src/render_host.cpp). */
-inline ulong pt_render_pixel(const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params, uint pixel,
+KD_INLINE ulong pt_render_pixel(const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params, uint pixel,
                              KD_GLOBAL long* film, uint* nonfinite) {
   long sums[PT_MAX_FILM_CHANNELS];
   for (uint c = 0; c < PT_MAX_FILM_CHANNELS; ++c) sums[c] = 0;

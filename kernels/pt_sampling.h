@@ -7,14 +7,14 @@
 #define PT_PI 3.14159265358979f
 #define PT_INV_PI 0.318309886183791f
 
-inline float pt_max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
-inline float pt_luminance(float3 c) { return (c.x + c.y + c.z) * (1.0f / 3.0f); }
-inline float3 pt_load3(KD_GLOBAL const float* array, uint index) {
+KD_INLINE float pt_max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
+KD_INLINE float pt_luminance(float3 c) { return (c.x + c.y + c.z) * (1.0f / 3.0f); }
+KD_INLINE float3 pt_load3(KD_GLOBAL const float* array, uint index) {
   return KD_FLOAT3(array[3 * index], array[3 * index + 1], array[3 * index + 2]);
 }
 
 /* Orthonormal basis around unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited"). */
-inline void pt_basis(float3 n, float3* t, float3* b) {
+KD_INLINE void pt_basis(float3 n, float3* t, float3* b) {
   float sign = copysign(1.0f, n.z);
   float a = -1.0f / (sign + n.z);
   float c = n.x * n.y * a;
@@ -22,14 +22,14 @@ inline void pt_basis(float3 n, float3* t, float3* b) {
   *b = KD_FLOAT3(c, sign + n.y * n.y * a, -n.y);
 }
 
-inline float3 pt_to_world(float3 v, float3 n) {
+KD_INLINE float3 pt_to_world(float3 v, float3 n) {
   float3 t, b;
   pt_basis(n, &t, &b);
   return v.x * t + v.y * b + v.z * n;
 }
 
 /* Cosine-weighted direction around n; pdf = cos(theta) / pi. */
-inline float3 pt_sample_cosine(float3 n, float u1, float u2) {
+KD_INLINE float3 pt_sample_cosine(float3 n, float u1, float u2) {
   float r = sqrt(u1);
   float phi = 2.0f * PT_PI * u2;
   float z = sqrt(fmax(0.0f, 1.0f - u1));
@@ -39,20 +39,20 @@ inline float3 pt_sample_cosine(float3 n, float u1, float u2) {
 }
 
 /* Uniform point on a triangle as barycentrics of vertices 1 and 2. */
-inline float2 pt_sample_triangle(float u1, float u2) {
+KD_INLINE float2 pt_sample_triangle(float u1, float u2) {
   float s = sqrt(u1);
   return KD_FLOAT2(s * (1.0f - u2), s * u2);
 }
 
 /* Barycentrics of vertices 1 and 2 of the point q0 + d of the plane through q0 with edges e1, e2. */
-inline float2 pt_barycentrics(float3 d, float3 e1, float3 e2) {
+KD_INLINE float2 pt_barycentrics(float3 d, float3 e1, float3 e2) {
   float d11 = kd_dot(e1, e1), d12 = kd_dot(e1, e2), d22 = kd_dot(e2, e2);
   float p1 = kd_dot(d, e1), p2 = kd_dot(d, e2);
   float inverse = 1.0f / (d11 * d22 - d12 * d12);
   return KD_FLOAT2((d22 * p1 - d12 * p2) * inverse, (d11 * p2 - d12 * p1) * inverse);
 }
 
-inline float pt_power_heuristic(float pdf_a, float pdf_b) {
+KD_INLINE float pt_power_heuristic(float pdf_a, float pdf_b) {
   float a = pdf_a * pdf_a;
   float b = pdf_b * pdf_b;
   return a / (a + b);
@@ -66,7 +66,7 @@ inline float pt_power_heuristic(float pdf_a, float pdf_b) {
  * coordinate a surface lies at: from a wall in the plane x = 0, moved 1.5e-5 off it, shadow rays
  * of the Cornell box met the wall again at t = +3e-8 (0.4% of them, in the trees whose leaf held
  * the wall and the origin together, so the image depended on the tree). */
-inline float3 pt_offset_origin(float3 p, float3 n) {
+KD_INLINE float3 pt_offset_origin(float3 p, float3 n) {
   const float origin = 1.0f / 32.0f;
   const float float_scale = 1.0f / 65536.0f;
   const float int_scale = 256.0f;

@@ -8,7 +8,7 @@
 
 /* Steps *i to this work-item's next path, claiming a new batch [*i, *end) from the counter when
  * the current one is done (start with *i = *end = 0); false once every path is taken. */
-inline bool pt_wave_next(__global uint* next_path, __global const PtRenderParams* params, uint* i, uint* end) {
+KD_INLINE bool pt_wave_next(__global uint* next_path, __global const PtRenderParams* params, uint* i, uint* end) {
   if (++*i < *end) return true;
   uint count = params->width * params->height;
   *i = atomic_add(next_path, PT_WAVE_BATCH);

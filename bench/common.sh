@@ -3,10 +3,15 @@
 # folder; default: build/ in the repository):
 #   . "$(dirname "$0")/common.sh"
 # It sets ROOT (the repository), CORPUS (the CORPUS variable, else ../shared/corpus beside the
-# repository) and the tools' paths under BUILD, and defines the helpers below.
+# repository), YARDSTICKS (the YARDSTICKS variable, else ../shared/yardsticks: the scripts that
+# drive Cycles and Mitsuba), MITSUBA_PYTHON (the variable, else the python of a venv
+# ../venv-mitsuba beside the repository, where Mitsuba 3 is installed) and the tools' paths under
+# BUILD, and defines the helpers below.
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BUILD=$(realpath "${BUILD:-$ROOT/build}")
 CORPUS=$(realpath -m "${CORPUS:-$ROOT/../shared/corpus}")
+YARDSTICKS=$(realpath -m "${YARDSTICKS:-$ROOT/../shared/yardsticks}")
+MITSUBA_PYTHON=$(realpath -m "${MITSUBA_PYTHON:-$ROOT/../venv-mitsuba/bin/python}")
 KDCONVERT=$BUILD/tools/kdconvert/kdconvert
 KDBUILD=$BUILD/tools/kdbuild/kdbuild
 KDRENDER=$BUILD/tools/kdrender/kdrender

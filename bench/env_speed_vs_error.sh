@@ -10,8 +10,8 @@
 # usage: bench/env_speed_vs_error.sh [BUILD_DIR] [MITSUBA_PYTHON]
 set -euo pipefail
 BUILD=${1:-}
-MITSUBA=${2:-/work/venv-mitsuba/bin/python}
 . "$(dirname "$0")/common.sh"
+MITSUBA=${2:-$MITSUBA_PYTHON}
 cd "$ROOT"
 RUNS=${RUNS:-3}
 SPPS=${SPPS:-16 64 256}
@@ -28,7 +28,7 @@ scene_files "$OBJ" spot
 VIEW="--width $SIZE --height $SIZE --max-bounces 8 --cam-pos 0,0.108431,3.57155 --cam-target 0,0.108431,0.190046 --fov 45"
 
 mitsuba() {  # mitsuba SPP SEED OUT
-  "$MITSUBA" /work/shared/yardsticks/mitsuba_render.py --obj "$OBJ" --out "$3" $VIEW --spp "$1" --seed "$2" \
+  "$MITSUBA" $YARDSTICKS/mitsuba_render.py --obj "$OBJ" --out "$3" $VIEW --spp "$1" --seed "$2" \
     --env "$MAP" --threads 2 --sampler multijitter > /dev/null 2>&1
 }
 kdray() {  # kdray SPP SEED OUT

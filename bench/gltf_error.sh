@@ -19,7 +19,6 @@ SIZE=${SIZE:-96}
 REF_SPP=${REF_SPP:-4096}
 SPPS=${SPPS:-16 64 256}
 RUNS=${RUNS:-3}
-MITSUBA_PYTHON=${MITSUBA_PYTHON:-/work/venv-mitsuba/bin/python}
 mkdir -p "$OUT"
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT

@@ -25,7 +25,7 @@ import gltf_scene  # noqa: E402
 
 
 def newest_llvm():
-    """Dr.Jit 1.5 needs libLLVM >= 17 (see /work/shared/yardsticks/mitsuba_render.py)."""
+    """Dr.Jit 1.5 needs libLLVM >= 17 (see ../shared/yardsticks/mitsuba_render.py)."""
     if os.environ.get("DRJIT_LIBLLVM_PATH"):
         return
     for version in range(25, 16, -1):

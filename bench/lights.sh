@@ -10,8 +10,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=$(realpath "${1:-build}")
 BASELINE=${2:-}
-MITSUBA=${3:-/work/venv-mitsuba/bin/python}
 . bench/common.sh
+MITSUBA=${3:-$MITSUBA_PYTHON}
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 
@@ -46,7 +46,7 @@ scene_files "$CORPUS/misc/spot.obj" spot
 SPOT="--width 128 --height 128 --max-bounces 8 --spp 512 --cam-pos 0,0.108431,3.57155 --cam-target 0,0.108431,0.190046 --fov 45"
 "$KDRENDER" "$WORK/spot.kdscene" "$WORK/spot.kdtree" -o "$WORK/kd.exr" $SPOT --env "$CORPUS/hdri/courtyard.exr" --quiet
 if [ -x "$MITSUBA" ]; then
-  "$MITSUBA" /work/shared/yardsticks/mitsuba_render.py --obj "$CORPUS/misc/spot.obj" --out "$WORK/mi.exr" $SPOT \
+  "$MITSUBA" $YARDSTICKS/mitsuba_render.py --obj "$CORPUS/misc/spot.obj" --out "$WORK/mi.exr" $SPOT \
     --env "$CORPUS/hdri/courtyard.exr" --threads 2 --sampler multijitter > /dev/null
   for image in kd mi; do echo "$image: $(oiiotool --stats "$WORK/$image.exr" | grep 'Stats Avg' | head -1)"; done
   "$KDCOMPARE" "$WORK/kd.exr" "$WORK/mi.exr" || true

@@ -11,11 +11,11 @@
 set -eu
 BUILD=$1
 BASELINE=${2:-}
-MITSUBA=${3:-/work/venv-mitsuba/bin/python}
 HERE=$(cd "$(dirname "$0")" && pwd)
+. "$HERE/common.sh"
+MITSUBA=${3:-$MITSUBA_PYTHON}
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
-median() { sort -n | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 seconds() { grep render_seconds | grep -o '[0-9.]*'; }
 SIZE="--width 96 --height 96 --spp 256 --max-bounces 8"
 

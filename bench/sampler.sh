@@ -3,7 +3,7 @@
 # Stanford bunny on its floor (SCENE=cornell-bunny, written by bench/cornell_bunny.py from the
 # corpus), 256x256, 8 max bounces (as Cycles counts), SPP (64) samples per pixel:
 #  1. kdrender --sampler sobol and --sampler independent, and, when the yardsticks are installed
-#     (/work/shared/yardsticks), Blender Cycles 3.4 and Mitsuba 3 (llvm_ad_rgb, multijitter,
+#     (../shared/yardsticks), Blender Cycles 3.4 and Mitsuba 3 (llvm_ad_rgb, multijitter,
 #     max_depth = bounces + 2), 2 threads each: whole processes timed side by side, interleaved
 #     in one loop, RUNS runs (run r uses seed r); prints the median wall time, the median kdrender
 #     render_seconds and the median relMSE against one converged reference, and error x time
@@ -22,8 +22,6 @@ RUNS=${RUNS:-3}
 SCENE=${SCENE:-cornell-box}
 SERIES=${SERIES:-1}
 REFERENCE_SPP=${REFERENCE_SPP:-1024}
-YARD=/work/shared/yardsticks
-MITSUBA_PYTHON=${MITSUBA_PYTHON:-/work/venv-mitsuba/bin/python}
 mkdir -p "$OUT"
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
@@ -54,8 +52,8 @@ echo "reference: $REFERENCE"
 
 renderers=(sobol independent)
 have_cycles=0 have_mitsuba=0
-if command -v blender > /dev/null && [[ -f $YARD/cycles_render.py ]]; then have_cycles=1 && renderers+=(cycles); fi
-if [[ -x $MITSUBA_PYTHON && -f $YARD/mitsuba_render.py ]]; then have_mitsuba=1 && renderers+=(mitsuba); fi
+if command -v blender > /dev/null && [[ -f $YARDSTICKS/cycles_render.py ]]; then have_cycles=1 && renderers+=(cycles); fi
+if [[ -x $MITSUBA_PYTHON && -f $YARDSTICKS/mitsuba_render.py ]]; then have_mitsuba=1 && renderers+=(mitsuba); fi
 
 # run NAME SEED: renders one 64-spp image to $WORK/NAME.exr, appends "wall render_s relmse" to $WORK/NAME.txt
 run() {
@@ -66,11 +64,11 @@ run() {
       render_s=$("$KDRENDER" $CORNELL -o "$WORK/$name.exr" $VIEW $SIZE --spp $SPP --seed "$seed" --sampler "$name" \
         --json | json_field render_seconds) ;;
     cycles)
-      blender -b --factory-startup --python "$YARD/cycles_render.py" -- --obj "$OBJ" --out "$WORK/$name.exr" \
+      blender -b --factory-startup --python "$YARDSTICKS/cycles_render.py" -- --obj "$OBJ" --out "$WORK/$name.exr" \
         --spp $SPP --width 256 --height 256 --max-bounces 8 --cam-pos 278,273,-800 --cam-target 278,273,0 \
         --fov 39.3077 --threads 2 --seed "$seed" > /dev/null 2>&1 ;;
     mitsuba)
-      "$MITSUBA_PYTHON" "$YARD/mitsuba_render.py" --obj "$OBJ" --out "$WORK/$name.exr" --spp $SPP --width 256 \
+      "$MITSUBA_PYTHON" "$YARDSTICKS/mitsuba_render.py" --obj "$OBJ" --out "$WORK/$name.exr" --spp $SPP --width 256 \
         --height 256 --max-bounces 8 --cam-pos 278,273,-800 --cam-target 278,273,0 --fov 39.3077 --threads 2 \
         --seed "$seed" --sampler multijitter > /dev/null 2>&1 ;;
   esac

@@ -73,6 +73,89 @@ TEST(GltfExtensions, EachUnmodelledExtensionIsNamedOnce) {
   EXPECT_EQ(scene.import_stats.warnings.size(), 2u);
 }
 
+// Blender 3.4's own glTF exporter wrote tests/scene/fixtures/blender/blender-export.glb; its README
+// gives every value below from the file's JSON.
+class BlenderExport : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { scene_ = new Scene(import_scene(kTests + "fixtures/blender/blender-export.glb", {})); }
+  static void TearDownTestSuite() { delete scene_; }
+  static const Material& material(const std::string& name) {
+    for (const Material& m : scene_->materials)
+      if (m.name == name) return m;
+    throw std::runtime_error("no material " + name);
+  }
+  static const Light& light(const std::string& name) {
+    for (const Light& l : scene_->lights)
+      if (l.name == name) return l;
+    throw std::runtime_error("no light " + name);
+  }
+  static inline Scene* scene_ = nullptr;
+};
+
+TEST_F(BlenderExport, TheCameraKeepsItsVerticalAngleAndAspectRatio) {
+  const Camera& camera = named_camera(*scene_, "Camera");
+  EXPECT_NEAR(camera.vertical_fov_degrees, 51.4814f, 1e-3);  // Assimp's route gave 54.2264
+  EXPECT_NEAR(camera.aspect_ratio, 4.0f / 3, 1e-6);
+  EXPECT_EQ(camera.projection, Projection::Perspective);
+  EXPECT_NEAR(camera.position.y, 3, 1e-5);
+  EXPECT_NEAR(camera.position.z, 6, 1e-5);
+  const float dy = camera.target.y - camera.position.y, dz = camera.target.z - camera.position.z;
+  EXPECT_NEAR(dy / std::sqrt(dy * dy + dz * dz), -0.34202f, 1e-5);  // 20 degrees down
+}
+
+TEST_F(BlenderExport, TheOrthographicCameraKeepsItsExtent) {
+  const Camera& ortho = named_camera(*scene_, "OrthoCamera");
+  EXPECT_EQ(ortho.projection, Projection::Orthographic);
+  EXPECT_FLOAT_EQ(ortho.orthographic_half_height, 2.25f);
+  EXPECT_FLOAT_EQ(ortho.aspect_ratio, 3.0f / 2.25f);
+}
+
+TEST_F(BlenderExport, EmissionIsTheFactorTimesTheStrength) {
+  const Material& lamp = material("Lamp");
+  EXPECT_EQ(lamp.type, MaterialType::Emissive);
+  EXPECT_FLOAT_EQ(lamp.emission.x, 6);
+  EXPECT_FLOAT_EQ(lamp.emission.y, 5.4f);
+  EXPECT_FLOAT_EQ(lamp.emission.z, 4.8f);
+}
+
+TEST_F(BlenderExport, LightsAreInWattsAsCyclesRendersThem) {
+  const Light& point = light("PointLight");  // 100 W: 5435.14 cd
+  EXPECT_EQ(point.type, LightType::Point);
+  EXPECT_NEAR(point.color.x, 7.95775f, 1e-4);
+  EXPECT_NEAR(point.color.y, 6.3662f, 1e-4);
+  EXPECT_NEAR(point.color.z, 4.77465f, 1e-4);
+  const Light& spot = light("SpotLight");  // 50 W: 2717.57 cd
+  EXPECT_EQ(spot.type, LightType::Spot);
+  EXPECT_NEAR(spot.color.x, 3.97887f, 1e-4);
+  EXPECT_NEAR(spot.outer_cone_radians, 0.523599f, 1e-5);
+  EXPECT_NEAR(spot.inner_cone_radians, 0.418879f, 1e-5);
+  const Light& sun = light("Sun");  // 3 W/m^2: 2049 lx
+  EXPECT_EQ(sun.type, LightType::Directional);
+  EXPECT_NEAR(sun.color.x, 3, 1e-4);
+  EXPECT_NEAR(sun.color.z, 2.7f, 1e-4);
+}
+
+TEST_F(BlenderExport, MaterialsAreTheSpecificationsWithItsDefaults) {
+  const Material& plastic = material("RoughPlastic");
+  EXPECT_EQ(plastic.type, MaterialType::MetallicRoughness);
+  EXPECT_FLOAT_EQ(plastic.base_color.x, 0.8f);
+  EXPECT_EQ(plastic.metallic, 0.0f);
+  EXPECT_EQ(plastic.roughness, 1.0f);  // roughnessFactor left out: 1, alpha 1
+  const Material& gold = material("Gold");
+  EXPECT_EQ(gold.type, MaterialType::MetallicRoughness);
+  EXPECT_EQ(gold.metallic, 1.0f);  // metallicFactor left out: 1
+  EXPECT_NEAR(gold.roughness, 0.09f, 1e-6);
+  EXPECT_NEAR(material("HalfRough").roughness, 0.25f, 1e-6);
+  const Material& glass = material("Glass");
+  EXPECT_EQ(glass.type, MaterialType::Dielectric);
+  EXPECT_NEAR(glass.ior, 1.45f, 1e-6);
+}
+
+TEST_F(BlenderExport, OnlyTheClearcoatIsNamedAsNotModelled) {
+  EXPECT_EQ(warnings_naming(*scene_, "KHR_materials_clearcoat"), 1u);
+  EXPECT_EQ(warnings_naming(*scene_, "extension"), 1u);
+}
+
 TEST(ColladaCameras, TheVerticalAngleFollowsFromTheHorizontalOneThroughTan) {
   const Scene scene = import_scene(kTests + "camera-xfov-aspect.dae", {});
   const Camera& wide = named_camera(scene, "wide");

@@ -280,6 +280,7 @@ r.use_file_extension = False
 out_dir = os.path.abspath(args.out_dir)
 os.makedirs(out_dir, exist_ok=True)
 stem = os.path.join(out_dir, args.name)
+bpy.context.preferences.filepaths.save_version = 0  # no NAME.blend1 backups of an earlier run
 bpy.ops.wm.save_as_mainfile(filepath=stem + ".blend")
 bpy.ops.export_scene.gltf(filepath=stem + ".glb", export_format='GLB', export_cameras=True, export_lights=True)
 print("wrote %s.blend and %s.glb" % (stem, stem))

@@ -11,7 +11,11 @@
 #  3. kdcompare against the Cycles reference: each channel's mean (kdray's against Cycles') and
 #     relMSE, beside the relMSE of Cycles' own LOW_SPP render. Issue 24 asks for every channel
 #     mean within 8% and kdray's relMSE at LOW_SPP at most 5x Cycles'. When kdray's image is
-#     not the reference's size, the means are still given and relMSE is not.
+#     not the reference's size, the means are still given and relMSE is not;
+#  4. the part of the difference that is Blender's Principled BSDF: Cycles renders the same
+#     .blend at REF_SPP with its rough plastics as Lambertian surfaces (bench/gltf_cycles/
+#     lambert.py; by the glTF specification such a plastic is within 1% of Lambertian), kept in
+#     OUT as NAME-cycles-lambert-REF_SPPspp.exr, and kdray's REF_SPP means are given against it.
 # usage: bench/gltf_cycles.sh [BUILD_DIR] [OUT_DIR]
 #        (env: SCENES="NAME=ROOM_OPTIONS;..." REF_SPP=1024 LOW_SPP=64 THREADS=2 BLENDER=blender
 #         CYCLES_ONLY=1: the Blender part alone, e.g. the references ahead of a kdray build)
@@ -67,6 +71,9 @@ for entry in "${entries[@]}"; do
   cycles "$name" "$LOW_SPP" 2 "${options[@]}"
   ref=$OUT/$name-cycles-${REF_SPP}spp.exr
   low=$OUT/$name-cycles-${LOW_SPP}spp.exr
+  lambert=$OUT/$name-cycles-lambert-${REF_SPP}spp.exr
+  [[ -f $lambert ]] || "$BLENDER" -b --factory-startup "$OUT/$name.blend" --python bench/gltf_cycles/lambert.py -- \
+    "$lambert" "$REF_SPP" > "$OUT/$name-cycles-lambert.log" 2>&1
   read -r width height < <(image_size "$ref")
   read -r -a ref_means < <(means "$ref")
   echo "Cycles ${width}x$height, $REF_SPP spp: means R G B ${ref_means[*]}"
@@ -97,6 +104,9 @@ for entry in "${entries[@]}"; do
         echo "  relMSE $kd_relmse, $(awk "BEGIN {printf \"%.2f\", $kd_relmse / $cycles_relmse}")x Cycles' $cycles_relmse at $spp spp (at most 5x asked)"
       else
         echo "  relMSE $kd_relmse"
+        read -r -a lambert_means < <(means "$lambert")
+        echo "  against Cycles with Lambertian plastics (means ${lambert_means[*]}):" \
+          "$(for c in 0 1 2; do awk "BEGIN {printf \"%+.1f%% \", 100 * (${kd_means[c]} / ${lambert_means[c]} - 1)}"; done)"
       fi
     else
       echo "  not the reference's size (${width}x$height): no relMSE"

@@ -17,7 +17,7 @@
 #
 # Writes OUT_DIR/NAME.blend and OUT_DIR/NAME.glb (export_format GLB, export_cameras and
 # export_lights; every other exporter setting its default), and with --exr renders with
-# Cycles on the CPU (settings as /work/shared/yardsticks/cycles_render.py: --spp samples, 8
+# Cycles on the CPU (settings as ../shared/yardsticks/cycles_render.py: --spp samples, 8
 # bounces of every kind, no denoising, 1-pixel box filter, no adaptive sampling, no clamping,
 # film not transparent, view transform Standard, float RGB OpenEXR of linear radiance).
 #

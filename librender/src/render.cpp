@@ -1,13 +1,12 @@
-// The render driver: picks the kernel features, builds the program, uploads the scene and
-// runs sample passes of the megakernel (or the wavefront form) into a fixed-point film; or, for
-// the device "host", runs them with the C++ build of the same code (render_host.cpp).
+// The render driver: resolves the view (render_view.cpp), builds the program for the scene's
+// features (kernel_features.cpp), uploads the scene and runs sample passes of the megakernel (or
+// the wavefront form) into a fixed-point film; or, for the device "host", runs them with the C++
+// build of the same code (render_host.cpp).
 #include "render_internal.h"
 
 #include <kdray/error.h>
 
 #include <kernels/pt_scene_args.h>
-
-#include <xxhash.h>
 
 #include <algorithm>
 #include <chrono>
@@ -27,37 +26,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-float length(const Vec3& v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
-Vec3 scale(const Vec3& v, float s) { return {v.x * s, v.y * s, v.z * s}; }
-void store(float* out, const Vec3& v) {
-  out[0] = v.x;
-  out[1] = v.y;
-  out[2] = v.z;
-  out[3] = 0;
-}
-
-void set_camera(PtRenderParams& params, const Camera& camera, uint32_t width, uint32_t height) {
-  Vec3 forward = sub(camera.target, camera.position);
-  forward = scale(forward, 1.0f / length(forward));
-  Vec3 right = cross(forward, camera.up);
-  right = scale(right, 1.0f / length(right));
-  Vec3 up = cross(right, forward);
-  // The image plane's half-height: at unit distance for a perspective view, in scene units for an
-  // orthographic one.
-  float half_height = camera.projection == Projection::Orthographic
-                          ? camera.orthographic_half_height
-                          : std::tan(camera.vertical_fov_degrees * 3.14159265358979f / 360.0f);
-  store(params.cam_origin, camera.position);
-  store(params.cam_forward, forward);
-  store(params.cam_right, scale(right, half_height * float(width) / float(height)));
-  store(params.cam_up, scale(up, half_height));
 }
 
 uint32_t aov_mask(const RenderSettings& s) {
@@ -109,82 +77,8 @@ std::vector<std::string> film_channel_names(const RenderSettings& s) {
   return names;
 }
 
-uint64_t tree_content_hash(const KdTree& tree) {
-  XXH3_state_t* state = XXH3_createState();
-  XXH3_64bits_reset(state);
-  XXH3_64bits_update(state, tree.nodes.data(), tree.nodes.size() * sizeof(KdNode));
-  XXH3_64bits_update(state, tree.leaf_triangles.data(), tree.leaf_triangles.size() * sizeof(uint32_t));
-  uint64_t hash = XXH3_64bits_digest(state);
-  XXH3_freeState(state);
-  return hash;
-}
 
-uint64_t render_settings_hash(const Scene& scene, const RenderSettings& settings) {
-  XXH3_state_t* state = XXH3_createState();
-  XXH3_64bits_reset(state);
-  auto add = [&](const void* data, size_t bytes) { XXH3_64bits_update(state, data, bytes); };
-  const Camera camera = render_camera(scene, settings);
-  const float camera_values[] = {camera.position.x, camera.position.y, camera.position.z, camera.target.x,
-                                 camera.target.y,   camera.target.z,   camera.up.x,       camera.up.y,
-                                 camera.up.z,       camera.vertical_fov_degrees};
-  add(camera_values, sizeof camera_values);
-  // Perspective views hash as they did before cameras had a projection, so their films still merge.
-  if (camera.projection == Projection::Orthographic)
-    add(&camera.orthographic_half_height, sizeof camera.orthographic_half_height);
-  const std::shared_ptr<const Environment> environment = render_environment(scene, settings);
-  const uint32_t switches[] = {environment ? 1u : 0u, settings.mis ? 1u : 0u};
-  add(switches, sizeof switches);
-  if (environment) {
-    const uint32_t size[] = {environment->width, environment->height};
-    const float transform[] = {environment->strength, environment->rotate_degrees};
-    add(size, sizeof size);
-    add(transform, sizeof transform);
-    add(environment->rgb.data(), environment->rgb.size() * sizeof(float));
-  }
-  uint64_t hash = XXH3_64bits_digest(state);
-  XXH3_freeState(state);
-  return hash;
-}
 
-Camera render_camera(const Scene& scene, const RenderSettings& settings) {
-  Camera camera = settings.camera         ? *settings.camera
-                  : scene.cameras.empty() ? default_camera(scene_bounds(scene))
-                                          : scene.cameras.front();
-  Vec3 forward = sub(camera.target, camera.position);
-  if (!finite(camera.position) || !finite(camera.target) || !finite(camera.up) || !(length(forward) > 0) ||
-      !(length(cross(forward, camera.up)) > 0)) {
-    throw Error("", "degenerate camera: position, target and up must be finite, distinct and not collinear");
-  }
-  if (settings.fov_degrees > 0) camera.vertical_fov_degrees = settings.fov_degrees;
-  if (!(camera.vertical_fov_degrees > 0 && camera.vertical_fov_degrees < 180)) {
-    throw Error("", "vertical field of view must be between 0 and 180 degrees");
-  }
-  if (camera.projection == Projection::Orthographic &&
-      !(camera.orthographic_half_height > 0 && std::isfinite(camera.orthographic_half_height))) {
-    throw Error("", "orthographic camera '" + camera.name + "' has no positive extent");
-  }
-  return camera;
-}
-
-void resolve_image_size(const Camera& camera, uint32_t& width, uint32_t& height) {
-  const double aspect = camera.aspect_ratio > 0 ? camera.aspect_ratio : 1.0;
-  auto side = [](double length) { return uint32_t(std::clamp(std::lround(length), 1l, long(UINT32_MAX))); };
-  if (width == 0 && height == 0) {
-    const double longer = RenderSettings::kDefaultSize;
-    width = aspect >= 1 ? uint32_t(longer) : side(longer * aspect);
-    height = aspect >= 1 ? side(longer / aspect) : uint32_t(longer);
-  } else if (height == 0) {
-    height = side(width / aspect);
-  } else if (width == 0) {
-    width = side(height * aspect);
-  }
-}
-
-RenderSettings resolve_view(const Scene& scene, RenderSettings settings) {
-  settings.camera = render_camera(scene, settings);
-  resolve_image_size(*settings.camera, settings.width, settings.height);
-  return settings;
-}
 
 std::shared_ptr<const Environment> render_environment(const Scene& scene, const RenderSettings& settings) {
   if (settings.environment) return settings.environment;
@@ -194,57 +88,6 @@ std::shared_ptr<const Environment> render_environment(const Scene& scene, const 
   return white;
 }
 
-uint32_t kernel_feature_bits(const Scene& scene, const RenderSettings& settings) {
-  uint32_t bits = 0;
-  const bool uvs = !scene.uvs.empty();
-  bool textures = false;
-  for (const Material& m : scene.materials) {
-    if (m.type == MaterialType::Mirror) bits |= PT_FEATURE_MIRROR;
-    if (m.type == MaterialType::RoughConductor) bits |= PT_FEATURE_GLOSSY;
-    if (m.type == MaterialType::Dielectric) bits |= PT_FEATURE_GLASS;
-    if (m.type == MaterialType::MetallicRoughness) bits |= PT_FEATURE_METALLIC_ROUGHNESS;
-    if (m.alpha_mode != AlphaMode::Opaque) bits |= PT_FEATURE_ALPHA;
-    if (!uvs) continue;
-    textures |= m.diffuse_texture >= 0 || m.metal_rough_texture >= 0 || m.normal_texture >= 0 || m.emissive_texture >= 0;
-    if (m.metal_rough_texture >= 0) bits |= PT_FEATURE_METAL_ROUGH_TEXTURE;
-    if (m.normal_texture >= 0) bits |= PT_FEATURE_NORMAL_MAP;
-    if (m.emissive_texture >= 0 && !scene.emissive_triangles.empty()) bits |= PT_FEATURE_EMISSIVE_TEXTURE;
-  }
-  if (textures) bits |= PT_FEATURE_TEXTURES;
-  if (!scene.emissive_triangles.empty()) bits |= PT_FEATURE_EMISSION;
-  if (!scene.normals.empty()) bits |= PT_FEATURE_NORMALS;
-  if (render_environment(scene, settings)) bits |= PT_FEATURE_ENVIRONMENT;
-  if (!scene.lights.empty()) bits |= PT_FEATURE_PUNCTUAL;
-  if (!settings.mis) bits |= PT_FEATURE_MIS_OFF;
-  if (render_camera(scene, settings).projection == Projection::Orthographic) bits |= PT_FEATURE_ORTHOGRAPHIC;
-  return bits;
-}
-
-std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device) {
-  static const std::pair<uint32_t, const char*> kDefines[] = {
-      {PT_FEATURE_EMISSION, "KD_FEATURE_EMISSION"},
-      {PT_FEATURE_MIRROR, "KD_FEATURE_MIRROR"},
-      {PT_FEATURE_GLOSSY, "KD_FEATURE_GLOSSY"},
-      {PT_FEATURE_GLASS, "KD_FEATURE_GLASS"},
-      {PT_FEATURE_METALLIC_ROUGHNESS, "KD_FEATURE_METALLIC_ROUGHNESS"},
-      {PT_FEATURE_ALPHA, "KD_FEATURE_ALPHA"},
-      {PT_FEATURE_TEXTURES, "KD_FEATURE_TEXTURES"},
-      {PT_FEATURE_METAL_ROUGH_TEXTURE, "KD_FEATURE_METAL_ROUGH_TEXTURE"},
-      {PT_FEATURE_NORMAL_MAP, "KD_FEATURE_NORMAL_MAP"},
-      {PT_FEATURE_EMISSIVE_TEXTURE, "KD_FEATURE_EMISSIVE_TEXTURE"},
-      {PT_FEATURE_NORMALS, "KD_FEATURE_NORMALS"},
-      {PT_FEATURE_ENVIRONMENT, "KD_FEATURE_ENVIRONMENT"},
-      {PT_FEATURE_PUNCTUAL, "KD_FEATURE_PUNCTUAL"},
-      {PT_FEATURE_MIS_OFF, "KD_MIS_OFF"},
-      {PT_FEATURE_ORTHOGRAPHIC, "KD_FEATURE_ORTHOGRAPHIC"},
-  };
-  const uint32_t bits = kernel_feature_bits(scene, settings);
-  std::string options = "-cl-std=CL1.2";
-  for (const auto& [bit, name] : kDefines)
-    if (bits & bit) options += std::string(" -D") + name;
-  if (device.short_stack_size) options += " -DKD_SHORT_STACK_SIZE=" + std::to_string(device.short_stack_size);
-  return options;
-}
 
 PtRenderParams render_params(const Scene& scene, const RenderSettings& settings, const Camera& camera,
                              const SceneArrays& arrays, const Environment* environment) {

@@ -28,8 +28,12 @@ class RenderWorker {
   int device_index = -1;  // in list_devices(); -1 for the host
 };
 
-// The PT_FEATURE_* bits of a render (kernels/pt_codes.h): what its kernel is built with.
+// The PT_FEATURE_* bits of a render (kernels/pt_codes.h): what its kernel is built with
+// (kernel_features.cpp).
 uint32_t kernel_feature_bits(const Scene& scene, const RenderSettings& settings);
+
+// The camera as the kernels' parameters for a width x height image (render_view.cpp).
+void set_camera(PtRenderParams& params, const Camera& camera, uint32_t width, uint32_t height);
 
 // The kernels' parameters of a render, but for the sample range (set per pass).
 PtRenderParams render_params(const Scene& scene, const RenderSettings& settings, const Camera& camera,

@@ -1,0 +1,62 @@
+// What a render's kernel is built with: the PT_FEATURE_* bits of the scene and settings and their
+// -D options, so that a program holds only the code its scene uses.
+#include "render_internal.h"
+
+#include <string>
+#include <utility>
+
+namespace kdray {
+
+uint32_t kernel_feature_bits(const Scene& scene, const RenderSettings& settings) {
+  uint32_t bits = 0;
+  const bool uvs = !scene.uvs.empty();
+  bool textures = false;
+  for (const Material& m : scene.materials) {
+    if (m.type == MaterialType::Mirror) bits |= PT_FEATURE_MIRROR;
+    if (m.type == MaterialType::RoughConductor) bits |= PT_FEATURE_GLOSSY;
+    if (m.type == MaterialType::Dielectric) bits |= PT_FEATURE_GLASS;
+    if (m.type == MaterialType::MetallicRoughness) bits |= PT_FEATURE_METALLIC_ROUGHNESS;
+    if (m.alpha_mode != AlphaMode::Opaque) bits |= PT_FEATURE_ALPHA;
+    if (!uvs) continue;
+    textures |= m.diffuse_texture >= 0 || m.metal_rough_texture >= 0 || m.normal_texture >= 0 || m.emissive_texture >= 0;
+    if (m.metal_rough_texture >= 0) bits |= PT_FEATURE_METAL_ROUGH_TEXTURE;
+    if (m.normal_texture >= 0) bits |= PT_FEATURE_NORMAL_MAP;
+    if (m.emissive_texture >= 0 && !scene.emissive_triangles.empty()) bits |= PT_FEATURE_EMISSIVE_TEXTURE;
+  }
+  if (textures) bits |= PT_FEATURE_TEXTURES;
+  if (!scene.emissive_triangles.empty()) bits |= PT_FEATURE_EMISSION;
+  if (!scene.normals.empty()) bits |= PT_FEATURE_NORMALS;
+  if (render_environment(scene, settings)) bits |= PT_FEATURE_ENVIRONMENT;
+  if (!scene.lights.empty()) bits |= PT_FEATURE_PUNCTUAL;
+  if (!settings.mis) bits |= PT_FEATURE_MIS_OFF;
+  if (render_camera(scene, settings).projection == Projection::Orthographic) bits |= PT_FEATURE_ORTHOGRAPHIC;
+  return bits;
+}
+
+std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device) {
+  static const std::pair<uint32_t, const char*> kDefines[] = {
+      {PT_FEATURE_EMISSION, "KD_FEATURE_EMISSION"},
+      {PT_FEATURE_MIRROR, "KD_FEATURE_MIRROR"},
+      {PT_FEATURE_GLOSSY, "KD_FEATURE_GLOSSY"},
+      {PT_FEATURE_GLASS, "KD_FEATURE_GLASS"},
+      {PT_FEATURE_METALLIC_ROUGHNESS, "KD_FEATURE_METALLIC_ROUGHNESS"},
+      {PT_FEATURE_ALPHA, "KD_FEATURE_ALPHA"},
+      {PT_FEATURE_TEXTURES, "KD_FEATURE_TEXTURES"},
+      {PT_FEATURE_METAL_ROUGH_TEXTURE, "KD_FEATURE_METAL_ROUGH_TEXTURE"},
+      {PT_FEATURE_NORMAL_MAP, "KD_FEATURE_NORMAL_MAP"},
+      {PT_FEATURE_EMISSIVE_TEXTURE, "KD_FEATURE_EMISSIVE_TEXTURE"},
+      {PT_FEATURE_NORMALS, "KD_FEATURE_NORMALS"},
+      {PT_FEATURE_ENVIRONMENT, "KD_FEATURE_ENVIRONMENT"},
+      {PT_FEATURE_PUNCTUAL, "KD_FEATURE_PUNCTUAL"},
+      {PT_FEATURE_MIS_OFF, "KD_MIS_OFF"},
+      {PT_FEATURE_ORTHOGRAPHIC, "KD_FEATURE_ORTHOGRAPHIC"},
+  };
+  const uint32_t bits = kernel_feature_bits(scene, settings);
+  std::string options = "-cl-std=CL1.2";
+  for (const auto& [bit, name] : kDefines)
+    if (bits & bit) options += std::string(" -D") + name;
+  if (device.short_stack_size) options += " -DKD_SHORT_STACK_SIZE=" + std::to_string(device.short_stack_size);
+  return options;
+}
+
+}  // namespace kdray

@@ -25,8 +25,8 @@
 #   blender -b --factory-startup --python bench/gltf_cycles/room.py -- --out-dir D --name room \
 #       [--light quad|point] [--layout-seed N] [--width 320 --height 240 --lens 28] \
 #       [--cam-pos X,Y,Z --cam-target X,Y,Z] [--exr OUT.exr --spp 1024 --seed 1 --threads 2]
-#   e.g. a third scene: --layout-seed 7 --width 384 --height 216 --lens 24
-#        --cam-pos=-1.4,-2.2,2.1 --cam-target 0.3,0.8,0.5
+#   e.g. bench/gltf_cycles.sh's third scene, "wide": --layout-seed 7 --width 384 --height 216
+#        --lens 24 --cam-pos=-1.2,-2.8,1.5 --cam-target 0.4,0.8,0.9
 # Coordinates are Blender's (Z up); the exporter turns them to glTF's Y up.
 import argparse
 import math

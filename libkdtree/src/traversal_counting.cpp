@@ -18,13 +18,15 @@ namespace counting_short_stack {
 
 TraversalCounts count_closest(const TraversalArrays& arrays, const RayRecord* rays, HitRecord* hits, size_t count) {
   counting_short_stack::KdSceneView view = make_view(&counting_short_stack::kd_scene_view, arrays);
-  counting_short_stack::KdTraversalCounters counters{0, 0, 0};
+  counting_short_stack::KdTraversalCounters counters{0, 0, 0, 0, 0};
   view.counters = &counters;
   for (size_t i = 0; i < count; ++i) hits[i] = counting_short_stack::kd_intersect_closest(&view, rays[i]);
   TraversalCounts counts;
   counts.inner_steps = counters.inner_steps;
   counts.leaves = counters.leaves;
   counts.triangle_tests = counters.triangle_tests;
+  counts.fast_path_rays = counters.fast_path_rays;
+  counts.fast_path_restarts = counters.fast_path_restarts;
   return counts;
 }
 

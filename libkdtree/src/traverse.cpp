@@ -1,5 +1,6 @@
 #include <kdray/traverse.h>
 
+#include <kdray/error.h>
 #include <kdray/threads.h>
 
 #include "traversal_variant.h"
@@ -35,7 +36,11 @@ detail::TraversalArrays arrays_of(const KdTree& tree, const KdNode* nodes, const
   return arrays;
 }
 
-const detail::TraversalVariant& variant_of(TraversalStack stack) {
+const detail::TraversalVariant& variant_of(TraversalStack stack, TraversalPath path = TraversalPath::FastWhereSafe) {
+  if (path == TraversalPath::Robust) {
+    if (stack != TraversalStack::Short) throw Error("", "the robust traversal alone is built with the short stack only");
+    return detail::traversal_robust_short_stack();
+  }
   switch (stack) {
     case TraversalStack::Depth1: return detail::traversal_depth1_stack();
     case TraversalStack::Full: return detail::traversal_full_stack();
@@ -119,18 +124,20 @@ detail::TraversalArrays PreparedTraversal::arrays() const {
 
 void PreparedTraversal::closest(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
                                 const TraceOptions& options) const {
-  trace_in_chunks(arrays(), rays, hits, options.threads, variant_of(options.stack).closest);
+  trace_in_chunks(arrays(), rays, hits, options.threads, variant_of(options.stack, options.path).closest);
 }
 
 TraversalWork PreparedTraversal::count_work(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
                                             const TraceOptions& options) const {
-  std::atomic<uint64_t> inner_steps{0}, leaves{0}, triangle_tests{0};
+  std::atomic<uint64_t> inner_steps{0}, leaves{0}, triangle_tests{0}, fast_path_rays{0}, fast_path_restarts{0};
   auto count_chunk = [&](const detail::TraversalArrays& arrays, const RayRecord* chunk, HitRecord* chunk_hits,
                          size_t count) {
     const detail::TraversalCounts counts = detail::count_closest(arrays, chunk, chunk_hits, count);
     inner_steps += counts.inner_steps;
     leaves += counts.leaves;
     triangle_tests += counts.triangle_tests;
+    fast_path_rays += counts.fast_path_rays;
+    fast_path_restarts += counts.fast_path_restarts;
   };
   trace_in_chunks(arrays(), rays, hits, options.threads, count_chunk);
   TraversalWork work;
@@ -138,12 +145,14 @@ TraversalWork PreparedTraversal::count_work(const std::vector<RayRecord>& rays, 
   work.inner_steps = inner_steps;
   work.leaves = leaves;
   work.triangle_tests = triangle_tests;
+  work.fast_path_rays = fast_path_rays;
+  work.fast_path_restarts = fast_path_restarts;
   return work;
 }
 
 void PreparedTraversal::any(const std::vector<RayRecord>& rays, std::vector<uint8_t>& occluded,
                             const TraceOptions& options) const {
-  trace_in_chunks(arrays(), rays, occluded, options.threads, variant_of(options.stack).any);
+  trace_in_chunks(arrays(), rays, occluded, options.threads, variant_of(options.stack, options.path).any);
 }
 
 void trace_closest(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,

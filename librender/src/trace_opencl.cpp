@@ -22,6 +22,7 @@ unsigned kernel_stack_size(TraversalStack stack) {
 TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu) {
   std::string options = "-cl-std=CL1.2";
   if (device.short_stack_size) options += " -DKD_SHORT_STACK_SIZE=" + std::to_string(device.short_stack_size);
+  if (device.robust_traversal) options += " -DKD_TRAVERSAL_ROBUST_ONLY";
   // One ray per work-item everywhere: a GPU vectorises across work-items. On a CPU device
   // (PoCL) each work-item runs as scalar code and waits on its node fetches, so the far child
   // of a split is prefetched when pushed; GPU compilers need not know __builtin_prefetch.

@@ -41,6 +41,7 @@ TraceRun trace_on(bool host, const kdray::Scene& scene, const kdray::KdTree& tre
     cpu_traversal->closest(rays, run.hits, options);
   } else {
     opencl_device.short_stack_size = kdray::kernel_stack_size(options.stack);
+    opencl_device.robust_traversal = options.path == kdray::TraversalPath::Robust;
     run.hits = kdray::trace_rays_opencl(scene, tree, rays, opencl_device, &run.opencl);
   }
   run.seconds = host ? std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
@@ -55,7 +56,8 @@ int main(int argc, char** argv) {
   CLI::App app{"kdtrace: closest hit of every ray against a scene and its k-d tree"};
   kdray::tool::OutputFlags output;
   kdray::tool::add_contract(app, "kdtrace", output, "Print the summary as JSON on stdout");
-  std::string scene_path, tree_path, cache_folder, rays_path, hits_path, generate, write_rays_path, stack_name = "short";
+  std::string scene_path, tree_path, cache_folder, rays_path, hits_path, generate, write_rays_path, stack_name = "short",
+              path_name = "fast";
   size_t count = 1000000;
   uint32_t width = 1024, height = 768;
   uint64_t seed = 1;
@@ -88,6 +90,10 @@ int main(int argc, char** argv) {
   kdray::tool::add_threads_option(app, options.threads);
   app.add_option("--stack", stack_name, "Traversal stack: short (8 entries, restart), depth1, full")
       ->check(CLI::IsMember({"short", "depth1", "full"}))->capture_default_str()->group("Device");
+  app.add_option("--traversal", path_name,
+                 "Traversal: fast (the fast path for every ray it gives the same hits, the robust code for the rest) "
+                 "or robust (every ray takes the robust code; with the short stack only on the host)")
+      ->check(CLI::IsMember({"fast", "robust"}))->capture_default_str()->group("Device");
 
   return kdray::tool::run(app, argc, argv, [&]() -> int {
     const kdray::tool::DeviceKind device = kdray::tool::device_kind(opencl_device.device);
@@ -113,6 +119,9 @@ int main(int argc, char** argv) {
     options.stack = stack_name == "depth1" ? kdray::TraversalStack::Depth1
                     : stack_name == "full" ? kdray::TraversalStack::Full
                                            : kdray::TraversalStack::Short;
+    options.path = path_name == "robust" ? kdray::TraversalPath::Robust : kdray::TraversalPath::FastWhereSafe;
+    if (host && options.path == kdray::TraversalPath::Robust && options.stack != kdray::TraversalStack::Short)
+      throw kdray::tool::UsageError("--traversal robust on the host: with --stack short only");
     const TraceRun run = trace_on(host, scene, tree, rays, options, opencl_device);
     if (!hits_path.empty()) kdray::write_hits(hits_path, run.hits);
 
@@ -122,16 +131,19 @@ int main(int argc, char** argv) {
     if (output.json) {
       nlohmann::json summary = {{"scene", scene_path}, {"tree", tree_path}, {"rays", rays.size()}, {"hits", hit_count},
                                 {"seconds", run.seconds}, {"cpu_seconds", run.cpu_seconds}, {"mrays_per_s", mrays_per_s},
-                                {"stack", stack_name}};
+                                {"stack", stack_name}, {"traversal", path_name}};
       // Per-ray work from a second, counting pass of the same traversal on the CPU (kept out
-      // of the timed run); the kernel runs the same code, so its hits and work are the same.
+      // of the timed run); the kernel runs the same code, so its hits and work are the same. The
+      // count is of the default traversal (the fast path where it applies) whatever --traversal says.
       std::vector<HitRecord> counted_hits;
       const kdray::TraversalWork work =
           kdray::PreparedTraversal(scene, tree).count_work(rays, counted_hits, {options.threads, kdray::TraversalStack::Short});
       const double per_ray = rays.empty() ? 0.0 : 1.0 / static_cast<double>(rays.size());
       summary["per_ray"] = {{"inner_steps", static_cast<double>(work.inner_steps) * per_ray},
                             {"leaves", static_cast<double>(work.leaves) * per_ray},
-                            {"triangle_tests", static_cast<double>(work.triangle_tests) * per_ray}};
+                            {"triangle_tests", static_cast<double>(work.triangle_tests) * per_ray},
+                            {"fast_path", static_cast<double>(work.fast_path_rays) * per_ray},
+                            {"fast_path_restarts", static_cast<double>(work.fast_path_restarts) * per_ray}};
       if (host) {
         summary["device"] = "host";
         summary["threads"] = options.threads;

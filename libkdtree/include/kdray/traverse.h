@@ -24,9 +24,15 @@ enum class TraversalStack {
   Full,    // KD_MAX_TREE_DEPTH entries: never restarts
 };
 
+// Which rays take kernels/kd_traverse.h's fast path: every one that gives the robust
+// traversal's hits there (the default), or none (KD_TRAVERSAL_ROBUST_ONLY, the short stack only):
+// the robust traversal alone, to compare the two.
+enum class TraversalPath { FastWhereSafe, Robust };
+
 struct TraceOptions {
   unsigned threads = 0;  // 0: all hardware threads
   TraversalStack stack = TraversalStack::Short;
+  TraversalPath path = TraversalPath::FastWhereSafe;
 };
 
 // The triangle layout traversal reads (KdSceneView.triangle_vertices in kernels/kd_traverse.h):
@@ -42,9 +48,10 @@ std::vector<uint32_t> empty_leaf_bits(const KdTree& tree);
 
 // Work of a batch of closest-hit traversals, summed over its rays (kernels/kd_traverse.h's
 // counters): inner-node visit steps, leaves visited (empty ones skipped by their bit not
-// counted) and ray/triangle tests.
+// counted) and ray/triangle tests; the rays that took the fast path, and those of them traced
+// again robustly when its stack overflowed.
 struct TraversalWork {
-  uint64_t rays = 0, inner_steps = 0, leaves = 0, triangle_tests = 0;
+  uint64_t rays = 0, inner_steps = 0, leaves = 0, triangle_tests = 0, fast_path_rays = 0, fast_path_restarts = 0;
 };
 
 // A scene and its tree ready for batches of rays: the triangle vertices gathered once, so

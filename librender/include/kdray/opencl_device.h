@@ -30,6 +30,7 @@ struct DeviceSelection {
   unsigned threads = 0;         // host: worker threads; 0: all cores
   size_t local_size = 0;        // work-group size; 0: the device's default (64 on CPUs)
   unsigned short_stack_size = 0;  // KD_SHORT_STACK_SIZE for the traversal; 0: the kernel default
+  bool robust_traversal = false;  // KD_TRAVERSAL_ROBUST_ONLY: no ray takes the traversal's fast path
 };
 
 // The device `selection` names; throws kdray::Error if there is none.

@@ -30,20 +30,30 @@ uint32_t little_endian_u32(const std::string& bytes, size_t at) {
 }
 
 // The JSON text of a .gltf, or the JSON chunk of a version 2 .glb (its first chunk, by the
-// specification); nothing for a glTF 1.0 binary.
+// specification), read without the binary chunk that follows it; nothing for a glTF 1.0 binary.
 std::optional<std::string> json_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, "cannot open");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (bytes.size() < 4 || little_endian_u32(bytes, 0) != kGlbMagic) return bytes;
-  if (bytes.size() < kGlbHeaderBytes + kGlbChunkHeaderBytes) throw Error(path, "a .glb shorter than its header");
-  if (little_endian_u32(bytes, 4) != 2) return std::nullopt;
-  const uint64_t length = little_endian_u32(bytes, kGlbHeaderBytes);
-  if (little_endian_u32(bytes, kGlbHeaderBytes + 4) != kGlbJsonChunk)
+  std::string header(kGlbHeaderBytes + kGlbChunkHeaderBytes, '\0');
+  in.read(header.data(), std::streamsize(header.size()));
+  header.resize(size_t(in.gcount()));
+  if (header.size() < 4 || little_endian_u32(header, 0) != kGlbMagic) {
+    in.clear();
+    in.seekg(0);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  }
+  if (header.size() < kGlbHeaderBytes + kGlbChunkHeaderBytes) throw Error(path, "a .glb shorter than its header");
+  if (little_endian_u32(header, 4) != 2) return std::nullopt;
+  if (little_endian_u32(header, kGlbHeaderBytes + 4) != kGlbJsonChunk)
     throw Error(path, "a .glb whose first chunk is not its JSON");
-  if (length > bytes.size() - kGlbHeaderBytes - kGlbChunkHeaderBytes)
-    throw Error(path, "a .glb whose JSON chunk runs past the end of the file");
-  return bytes.substr(kGlbHeaderBytes + kGlbChunkHeaderBytes, length);
+  in.seekg(0, std::ios::end);
+  const uint64_t available = uint64_t(in.tellg()) - header.size();
+  const uint64_t length = little_endian_u32(header, kGlbHeaderBytes);
+  if (length > available) throw Error(path, "a .glb whose JSON chunk runs past the end of the file");
+  std::string json(length, '\0');
+  in.seekg(std::streamoff(header.size()));
+  if (!in.read(json.data(), std::streamsize(length))) throw Error(path, "cannot read its JSON chunk");
+  return json;
 }
 
 const nlohmann::json* member(const nlohmann::json& object, const char* name) {

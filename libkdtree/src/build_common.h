@@ -145,8 +145,8 @@ void classify(const Event* events, size_t count, const SplitChoice& split, uint8
 // A tree or subtree under construction: nodes in depth-first order, near (below) child next,
 // and the leaf-triangle array. Indices are relative to this subtree.
 struct Subtree {
-  std::vector<KdNode> nodes;
-  std::vector<uint32_t> leaf_triangles;
+  TraversalArray<KdNode> nodes;
+  TraversalArray<uint32_t> leaf_triangles;
 
   void add_leaf(const uint32_t* triangles, size_t count);
   // Adds an inner node, then the near child's subtree (build_near() appends it) and the far

@@ -10,12 +10,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <sys/mman.h>
-
 #include <algorithm>
 #include <atomic>
-#include <cstdlib>
-#include <new>
 
 namespace kdray {
 namespace {
@@ -63,63 +59,50 @@ void trace_in_chunks(const detail::TraversalArrays& arrays, const std::vector<Ra
   });
 }
 
-// Writes the KD_TRIANGLE_FLOATS floats per triangle of gather_triangle_vertices to out.
-void gather_triangle_vertices_into(const Scene& scene, float* out) {
-  const size_t triangles = scene.triangle_count();
-  for (size_t triangle = 0; triangle < triangles; ++triangle) {
-    float* corners = out + triangle * KD_TRIANGLE_FLOATS;
-    for (size_t corner = 0; corner < 3; ++corner) {
-      const Vec3& p = scene.positions[scene.indices[3 * triangle + corner]];
-      corners[3 * corner + 0] = p.x;
-      corners[3 * corner + 1] = p.y;
-      corners[3 * corner + 2] = p.z;
-    }
-  }
-}
-
 }  // namespace
 
 std::vector<uint32_t> empty_leaf_bits(const KdTree& tree) {
-  std::vector<uint32_t> bits((tree.nodes.size() + 31) / 32, 0u);
-  for (size_t node = 0; node < tree.nodes.size(); ++node)
-    if (kd_node_is_leaf(tree.nodes[node]) && kd_leaf_count(tree.nodes[node]) == 0)
-      bits[node / 32] |= 1u << (node % 32);
+  const size_t nodes = tree.nodes.size();
+  std::vector<uint32_t> bits((nodes + 31) / 32);
+  // An empty leaf's header is the leaf tag with a count of 0. Whole words of 32 nodes without a
+  // branch per node, so the loop vectorises: it runs at every load of a tree of millions of nodes.
+  auto word_of = [&](size_t word, size_t count) {
+    const KdNode* node = tree.nodes.data() + word * 32;
+    uint32_t value = 0;
+    for (size_t bit = 0; bit < count; ++bit) value |= uint32_t{node[bit].header == KD_LEAF_TAG} << bit;
+    return value;
+  };
+  const size_t whole_words = nodes / 32;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, whole_words, 4096), [&](const tbb::blocked_range<size_t>& words) {
+    for (size_t word = words.begin(); word < words.end(); ++word) bits[word] = word_of(word, 32);
+  });
+  if (nodes % 32 != 0) bits[whole_words] = word_of(whole_words, nodes % 32);
   return bits;
 }
 
-std::vector<float> gather_triangle_vertices(const Scene& scene) {
-  std::vector<float> vertices(scene.triangle_count() * KD_TRIANGLE_FLOATS, 0.0f);
-  gather_triangle_vertices_into(scene, vertices.data());
+TraversalArray<float> gather_triangle_vertices(const Scene& scene) {
+  TraversalArray<float> vertices(scene.triangle_count() * KD_TRIANGLE_FLOATS);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, scene.triangle_count(), 16384),
+                    [&](const tbb::blocked_range<size_t>& triangles) {
+                      for (size_t triangle = triangles.begin(); triangle < triangles.end(); ++triangle) {
+                        float* corners = vertices.data() + triangle * KD_TRIANGLE_FLOATS;
+                        for (size_t corner = 0; corner < 3; ++corner) {
+                          const Vec3& p = scene.positions[scene.indices[3 * triangle + corner]];
+                          corners[3 * corner + 0] = p.x;
+                          corners[3 * corner + 1] = p.y;
+                          corners[3 * corner + 2] = p.z;
+                        }
+                      }
+                    });
   return vertices;
 }
 
-template <typename T>
-PreparedTraversal::HugePageArray<T>::HugePageArray(size_t count) : count_(count) {
-  constexpr size_t kHugePage = size_t{2} << 20;
-  // Arrays under one huge page gain nothing; they keep the ordinary alignment.
-  const size_t bytes = std::max<size_t>(count * sizeof(T), 1);
-  const size_t alignment = bytes >= kHugePage ? kHugePage : alignof(std::max_align_t);
-  const size_t rounded = (bytes + alignment - 1) / alignment * alignment;
-  void* memory = std::aligned_alloc(alignment, rounded);
-  if (!memory) throw std::bad_alloc();
-  // Advice only: where the kernel has no huge pages to give, the array keeps 4 KiB pages.
-  if (alignment == kHugePage) madvise(memory, rounded, MADV_HUGEPAGE);
-  data_.reset(static_cast<T*>(memory));
-}
-
 PreparedTraversal::PreparedTraversal(const Scene& scene, const KdTree& tree)
-    : tree_(tree),
-      nodes_(tree.nodes.size()),
-      leaf_triangles_(tree.leaf_triangles.size()),
-      triangle_vertices_(scene.triangle_count() * KD_TRIANGLE_FLOATS),
-      empty_leaves_(empty_leaf_bits(tree)) {
-  std::copy(tree.nodes.begin(), tree.nodes.end(), nodes_.data());
-  std::copy(tree.leaf_triangles.begin(), tree.leaf_triangles.end(), leaf_triangles_.data());
-  gather_triangle_vertices_into(scene, triangle_vertices_.data());
-}
+    : tree_(tree), triangle_vertices_(gather_triangle_vertices(scene)), empty_leaves_(empty_leaf_bits(tree)) {}
 
 detail::TraversalArrays PreparedTraversal::arrays() const {
-  return arrays_of(tree_, nodes_.data(), leaf_triangles_.data(), triangle_vertices_.data(), empty_leaves_.data());
+  return arrays_of(tree_, tree_.nodes.data(), tree_.leaf_triangles.data(), triangle_vertices_.data(),
+                   empty_leaves_.data());
 }
 
 void PreparedTraversal::closest(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
@@ -166,7 +149,7 @@ void trace_any(const Scene& scene, const KdTree& tree, const std::vector<RayReco
 }
 
 HitRecord intersect_closest(const Scene& scene, const KdTree& tree, const RayRecord& ray, TraversalStack stack) {
-  const std::vector<float> triangle_vertices = gather_triangle_vertices(scene);
+  const TraversalArray<float> triangle_vertices = gather_triangle_vertices(scene);
   const std::vector<uint32_t> empty_leaves = empty_leaf_bits(tree);
   HitRecord hit;
   variant_of(stack).closest(

@@ -9,6 +9,11 @@
 
 #include <xxhash.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -55,45 +60,85 @@ T from_portable_binary(const std::string& bytes, const std::string& path, const 
   return value;
 }
 
-// Checks that the nodes form one tree in the documented depth-first layout (near child next,
-// far child right after the near subtree), no deeper than KD_MAX_TREE_DEPTH, with every leaf
-// range inside the leaf-triangle array and every triangle index below `triangles`.
-void validate_structure(const KdTree& tree, const std::string& path) {
-  if (tree.nodes.empty()) throw Error(path, "damaged tree: no nodes");
+// Checks that the nodes [begin, end) form one subtree whose root is `begin`, at `depth`, in the
+// documented depth-first layout (near child next, far child right after the near subtree), no
+// deeper than KD_MAX_TREE_DEPTH, with every split finite and every leaf range inside the
+// leaf-triangle array. One pass in node order: each inner node leaves its far child pending,
+// each leaf must be followed by the nearest pending node. A load of millions of nodes runs it,
+// so a node's checks are computed without branches and only a failure leaves the loop.
+void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end, uint32_t depth,
+                               const std::string& path) {
   struct Pending {
     uint64_t node;
     uint32_t depth;
   };
-  std::vector<Pending> stack{{0, 0}};
-  uint64_t expected = 0;
-  while (!stack.empty()) {
-    const Pending item = stack.back();
-    stack.pop_back();
-    if (item.node != expected || item.node >= tree.nodes.size())
-      throw Error(path, "damaged tree: node " + std::to_string(expected) + " is out of place");
-    ++expected;
-    const KdNode node = tree.nodes[item.node];
-    if (kd_node_is_leaf(node)) {
-      const uint64_t first = kd_leaf_first(node), count = kd_leaf_count(node);
-      if (first + count > tree.leaf_triangles.size())
-        throw Error(path, "damaged tree: leaf " + std::to_string(item.node) + " reaches past the leaf array");
-      continue;
+  // The far children pending, deepest last, above a sentinel: after the subtree's last leaf
+  // comes `end`. Their depths rise strictly and are at most KD_MAX_TREE_DEPTH, so they fit.
+  Pending pending[KD_MAX_TREE_DEPTH + 2];
+  pending[0] = {end, 0};
+  uint32_t top = 1;  // entries in `pending`
+  const uint64_t references = tree.leaf_triangles.size();
+  const KdNode* nodes = tree.nodes.data();
+  for (uint64_t index = begin; index < end; ++index) {
+    const KdNode node = nodes[index];
+    const bool leaf = kd_node_is_leaf(node);
+    const uint64_t field = kd_node_far_child(node);  // a leaf's triangle count
+    const Pending resume = pending[top - 1];
+    const bool finite_split = (node.payload & 0x7f800000u) != 0x7f800000u;
+    // As 0/1 integers combined with a mask, so the compiler keeps them free of branches.
+    const uint32_t leaf_mask = 0u - static_cast<uint32_t>(leaf);
+    const uint32_t inner_valid = static_cast<uint32_t>(field > index + 1) & static_cast<uint32_t>(field < end) &
+                                 static_cast<uint32_t>(depth < KD_MAX_TREE_DEPTH) & static_cast<uint32_t>(finite_split);
+    const uint32_t leaf_valid = static_cast<uint32_t>(uint64_t{kd_leaf_first(node)} + field <= references) &
+                                static_cast<uint32_t>(resume.node == index + 1);
+    const uint32_t valid = (leaf_valid & leaf_mask) | (inner_valid & ~leaf_mask);
+    if (__builtin_expect(valid == 0, 0)) {
+      const std::string at = "damaged tree: node " + std::to_string(index);
+      if (!leaf && depth >= KD_MAX_TREE_DEPTH)
+        throw Error(path, "damaged tree: deeper than " + std::to_string(KD_MAX_TREE_DEPTH) + " levels");
+      if (!leaf && !finite_split) throw Error(path, at + " has a non-finite split");
+      if (!leaf) throw Error(path, at + " has an invalid far child");
+      if (resume.node == index + 1)
+        throw Error(path, "damaged tree: leaf " + std::to_string(index) + " reaches past the leaf array");
+      if (resume.node == tree.nodes.size()) throw Error(path, "damaged tree: unreachable nodes");
+      throw Error(path, "damaged tree: node " + std::to_string(resume.node) + " is out of place");
     }
-    if (item.depth + 1 > KD_MAX_TREE_DEPTH)
-      throw Error(path, "damaged tree: deeper than " + std::to_string(KD_MAX_TREE_DEPTH) + " levels");
-    if (!std::isfinite(kd_node_split(node)))
-      throw Error(path, "damaged tree: node " + std::to_string(item.node) + " has a non-finite split");
-    const uint64_t far_child = kd_node_far_child(node);
-    if (far_child <= item.node + 1 || far_child >= tree.nodes.size())
-      throw Error(path, "damaged tree: node " + std::to_string(item.node) + " has an invalid far child");
-    stack.push_back({far_child, item.depth + 1});
-    stack.push_back({item.node + 1, item.depth + 1});
+    pending[top] = {field, depth + 1};  // kept only by an inner node
+    top = top + 1 - 2 * static_cast<uint32_t>(leaf);
+    depth = (resume.depth & leaf_mask) | ((depth + 1) & ~leaf_mask);
   }
-  if (expected != tree.nodes.size()) throw Error(path, "damaged tree: unreachable nodes");
-  for (uint32_t triangle : tree.leaf_triangles)
-    if (triangle >= tree.stats.triangles)
-      throw Error(path, "damaged tree: triangle index " + std::to_string(triangle) + " beyond the scene's " +
-                            std::to_string(tree.stats.triangles));
+}
+
+// The same for a large subtree: its root's two subtrees are independent ranges of the array,
+// [begin + 1, far) and [far, end), so they are checked in parallel down to a size worth a task.
+void validate_subtree(const KdTree& tree, uint64_t begin, uint64_t end, uint32_t depth, const std::string& path) {
+  constexpr uint64_t kSerialNodes = uint64_t{1} << 18;
+  const KdNode root = tree.nodes[begin];
+  const uint64_t far = kd_node_far_child(root);
+  const bool splits = end - begin > kSerialNodes && !kd_node_is_leaf(root) && far > begin + 1 && far < end &&
+                      depth < KD_MAX_TREE_DEPTH && std::isfinite(kd_node_split(root));
+  if (!splits) {
+    validate_subtree_serially(tree, begin, end, depth, path);
+    return;
+  }
+  tbb::parallel_invoke([&] { validate_subtree(tree, begin + 1, far, depth + 1, path); },
+                       [&] { validate_subtree(tree, far, end, depth + 1, path); });
+}
+
+// The whole tree, then every triangle index below the triangle count of the statistics.
+void validate_structure(const KdTree& tree, const std::string& path) {
+  if (tree.nodes.empty()) throw Error(path, "damaged tree: no nodes");
+  validate_subtree(tree, 0, tree.nodes.size(), 0, path);
+  const uint32_t largest = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, tree.leaf_triangles.size(), size_t{1} << 16), uint32_t{0},
+      [&](const tbb::blocked_range<size_t>& range, uint32_t value) {
+        for (size_t i = range.begin(); i < range.end(); ++i) value = std::max(value, tree.leaf_triangles[i]);
+        return value;
+      },
+      [](uint32_t a, uint32_t b) { return std::max(a, b); });
+  if (!tree.leaf_triangles.empty() && largest >= tree.stats.triangles)
+    throw Error(path, "damaged tree: triangle index " + std::to_string(largest) + " beyond the scene's " +
+                          std::to_string(tree.stats.triangles));
 }
 
 // The key over (size, bytes) parts: the geometry hash, the encoded settings (section 3's bytes)
@@ -205,9 +250,6 @@ void check_tree_matches_scene(const KdTree& tree, const std::string& tree_path, 
   if (tree.stats.triangles != scene.triangle_count())
     throw Error(tree_path, "tree is for " + std::to_string(tree.stats.triangles) + " triangles, but " + scene_path +
                                " has " + std::to_string(scene.triangle_count()));
-  for (uint32_t triangle : tree.leaf_triangles)
-    if (triangle >= scene.triangle_count())
-      throw Error(tree_path, "triangle index " + std::to_string(triangle) + " beyond " + scene_path);
 }
 
 }  // namespace kdray

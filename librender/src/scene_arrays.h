@@ -23,8 +23,8 @@ struct HostArray {
   const void* data = nullptr;
   size_t bytes = 0;
 };
-template <typename T>
-HostArray host_array(const std::vector<T>& values) {
+template <typename T, typename Allocator>
+HostArray host_array(const std::vector<T, Allocator>& values) {
   return {values.data(), values.size() * sizeof(T)};
 }
 
@@ -34,7 +34,7 @@ struct GeometryArrays {
 #define KD_ARRAY_SKIP(type, name)
   PT_SCENE_BUFFERS(KD_ARRAY_MEMBER, KD_ARRAY_SKIP)
   float bounds_min[3] = {0, 0, 0}, bounds_max[3] = {0, 0, 0};
-  std::vector<float> gathered_vertices;  // what triangle_vertices views
+  TraversalArray<float> gathered_vertices;  // what triangle_vertices views
 
   GeometryArrays() = default;
   GeometryArrays(GeometryArrays&&) = default;  // a move keeps the views valid, a copy would not

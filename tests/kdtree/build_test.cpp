@@ -39,7 +39,7 @@ TEST(KdBuild, EmptySceneIsOneEmptyLeaf) {
 TEST(KdBuild, SingleTriangleIsOneLeaf) {
   const KdTree tree = build_kdtree(test::from_triangles({0, 0, 0, 1, 0, 0, 0, 1, 0}), BuildSettings{});
   ASSERT_EQ(tree.nodes.size(), 1u);
-  EXPECT_EQ(tree.leaf_triangles, std::vector<uint32_t>{0});
+  EXPECT_EQ(tree.leaf_triangles, TraversalArray<uint32_t>{0});
   EXPECT_EQ(tree.bounds.max.x, 1.0f);
   EXPECT_EQ(tree.bounds.min.z, 0.0f);
   EXPECT_EQ(tree.bounds.max.z, 0.0f);
@@ -70,7 +70,7 @@ TEST(KdBuild, TrianglesWithNonFiniteCornersAreLeftOut) {
   const Scene scene = test::from_triangles({0, 0, 0, 1, 0, 0, 0, 1, 0, nan, 0, 0, 1, 1, 1, 0, 1, 1,
                                             0, 0, 1, INFINITY, 0, 1, 0, 1, 1});
   const KdTree tree = build_kdtree(scene, BuildSettings{});
-  EXPECT_EQ(tree.leaf_triangles, std::vector<uint32_t>{0});
+  EXPECT_EQ(tree.leaf_triangles, TraversalArray<uint32_t>{0});
   EXPECT_EQ(tree.bounds.max.z, 0.0f) << "the bounds ignore the dropped triangles";
   EXPECT_EQ(tree.stats.triangles, 3u);
 }

@@ -197,7 +197,7 @@ TEST(KdOpenCl, KernelTraversalMatchesCpuWithDepthOneStack) {
 
   const float bounds[6] = {tree.bounds.min.x, tree.bounds.min.y, tree.bounds.min.z,
                            tree.bounds.max.x, tree.bounds.max.y, tree.bounds.max.z};
-  const std::vector<float> triangle_vertices = gather_triangle_vertices(scene);
+  const TraversalArray<float> triangle_vertices = gather_triangle_vertices(scene);
   std::vector<HitRecord> gpu(rays.size());
   cl_mem hits = device.buffer(gpu.data(), gpu.size() * sizeof(HitRecord));
   device.run("trace_closest",

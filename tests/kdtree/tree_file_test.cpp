@@ -126,6 +126,50 @@ TEST_F(KdTreeFile, InvalidStructureIsRejected) {
   expect_rejected(tree, "no nodes", "no nodes");
 }
 
+// A complete tree of 2^20 empty leaves (about two million nodes): large enough that a reader
+// checks its subtrees in parallel pieces. Damage deep in either half must still be found.
+KdTree complete_tree(uint32_t levels) {
+  KdTree tree;
+  tree.stats.triangles = 0;
+  struct Builder {
+    KdTree& tree;
+    void add(uint32_t depth, uint32_t levels) {
+      const uint32_t index = static_cast<uint32_t>(tree.nodes.size());
+      if (depth == levels) {
+        tree.nodes.push_back(KdNode{0, KD_LEAF_TAG});
+        return;
+      }
+      tree.nodes.push_back(KdNode{0, depth % 3});
+      add(depth + 1, levels);
+      tree.nodes[index].header = static_cast<uint32_t>(tree.nodes.size()) << 2 | depth % 3;
+      add(depth + 1, levels);
+    }
+  } builder{tree};
+  builder.add(0, levels);
+  return tree;
+}
+
+TEST_F(KdTreeFile, LargeTreesAreCheckedThroughout) {
+  const KdTree intact = complete_tree(20);
+  write_tree(path("intact.kdtree"), intact);
+  EXPECT_EQ(read_error(path("intact.kdtree")), "");
+  size_t in_near_half = intact.nodes.size() / 4;
+  while (kd_node_is_leaf(intact.nodes[in_near_half])) ++in_near_half;
+  for (const size_t damaged : {in_near_half, intact.nodes.size() - 3}) {
+    KdTree tree = intact;
+    ASSERT_FALSE(kd_node_is_leaf(tree.nodes[damaged])) << damaged;
+    tree.nodes[damaged].header = static_cast<uint32_t>(damaged + 1) << 2 | kd_node_axis(tree.nodes[damaged]);
+    write_tree(path("damaged.kdtree"), tree);
+    EXPECT_NE(read_error(path("damaged.kdtree")).find("node " + std::to_string(damaged) + " has an invalid far child"),
+              std::string::npos)
+        << read_error(path("damaged.kdtree"));
+    tree = intact;
+    tree.nodes[damaged] = KdNode{0, KD_LEAF_TAG};  // a leaf where an inner node was: its subtree is left over
+    write_tree(path("damaged.kdtree"), tree);
+    EXPECT_NE(read_error(path("damaged.kdtree")), "") << "inner node " << damaged << " made a leaf";
+  }
+}
+
 TEST_F(KdTreeFile, TreeDeeperThanTheFullStackIsRejected) {
   // A chain of inner nodes whose near child is a leaf: depth 70.
   KdTree tree;

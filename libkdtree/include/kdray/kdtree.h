@@ -4,6 +4,7 @@
 
 #include <kdray/error.h>
 #include <kdray/scene.h>
+#include <kdray/traversal_array.h>
 
 #include <kernels/kd_types.h>
 
@@ -49,8 +50,8 @@ struct TreeStats {
 };
 
 struct KdTree {
-  std::vector<KdNode> nodes;             // root first; see kernels/kd_types.h
-  std::vector<uint32_t> leaf_triangles;  // leaves are ranges of this array
+  TraversalArray<KdNode> nodes;             // root first; see kernels/kd_types.h
+  TraversalArray<uint32_t> leaf_triangles;  // leaves are ranges of this array
   Bounds bounds;                         // the root voxel
   BuildSettings settings;
   TreeStats stats;
@@ -101,7 +102,8 @@ KdTree read_tree(const std::string& path);
 
 // Throws kdray::Error when the tree was built for other geometry ("stale tree: built for
 // geometry <hash>, but <scene path> has geometry <hash>: rebuild with kdbuild"; for a version 1
-// tree, another scene content) or references a triangle the scene does not have.
+// tree, another scene content) or is for another triangle count (its triangle indices were
+// checked against its own count when it was read or built).
 void check_tree_matches_scene(const KdTree& tree, const std::string& tree_path, const Scene& scene,
                               const std::string& scene_path);
 

@@ -9,8 +9,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
-#include <memory>
 #include <vector>
 
 namespace kdray {
@@ -39,7 +37,7 @@ struct TraceOptions {
 // KD_TRIANGLE_FLOATS floats per triangle, its three corners copied from the scene's positions
 // (9 floats, 36 bytes per triangle). PreparedTraversal gathers it once; device code uploads it
 // next to the tree.
-std::vector<float> gather_triangle_vertices(const Scene& scene);
+TraversalArray<float> gather_triangle_vertices(const Scene& scene);
 
 // One bit per node of the tree, set for empty leaves (bit n % 32 of word n / 32): derived at
 // load for traversals built with KD_EMPTY_LEAF_BITS (KdSceneView.empty_leaves), which skip
@@ -55,7 +53,8 @@ struct TraversalWork {
 };
 
 // A scene and its tree ready for batches of rays: the triangle vertices gathered once, so
-// repeated batches (and timings of them) do not pay for it again. Keeps references to both.
+// repeated batches (and timings of them) do not pay for it again. Keeps references to both
+// and traces the tree's own arrays.
 class PreparedTraversal {
  public:
   PreparedTraversal(const Scene& scene, const KdTree& tree);
@@ -74,31 +73,10 @@ class PreparedTraversal {
                            const TraceOptions& options = {}) const;
 
  private:
-  // An array in memory the kernel is asked to back with transparent huge pages (where it
-  // offers them on request, madvise mode): random rays touch the whole node array, and with
-  // 4 KiB pages nearly every node fetch also misses the TLB.
-  template <typename T>
-  class HugePageArray {
-   public:
-    explicit HugePageArray(size_t count);
-    T* data() { return data_.get(); }
-    const T* data() const { return data_.get(); }
-    size_t size() const { return count_; }
-
-   private:
-    struct Free {
-      void operator()(T* p) const { std::free(p); }  // from std::aligned_alloc
-    };
-    std::unique_ptr<T, Free> data_;
-    size_t count_;
-  };
-
   detail::TraversalArrays arrays() const;
 
-  const KdTree& tree_;
-  HugePageArray<KdNode> nodes_;
-  HugePageArray<uint32_t> leaf_triangles_;
-  HugePageArray<float> triangle_vertices_;
+  const KdTree& tree_;  // its node and leaf arrays are traced where they are
+  TraversalArray<float> triangle_vertices_;
   std::vector<uint32_t> empty_leaves_;  // empty_leaf_bits
 };
 

@@ -1,0 +1,24 @@
+#include <kdray/traversal_array.h>
+
+#include <sys/mman.h>
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace kdray::detail {
+
+void* allocate_traversal_memory(size_t bytes) {
+  constexpr size_t kHugePage = size_t{2} << 20;
+  // Arrays under one huge page gain nothing; they keep the ordinary alignment.
+  bytes = std::max<size_t>(bytes, 1);
+  const size_t alignment = bytes >= kHugePage ? kHugePage : alignof(std::max_align_t);
+  const size_t rounded = (bytes + alignment - 1) / alignment * alignment;
+  void* memory = std::aligned_alloc(alignment, rounded);
+  if (!memory) throw std::bad_alloc();
+  if (alignment == kHugePage) madvise(memory, rounded, MADV_HUGEPAGE);
+  return memory;
+}
+
+void free_traversal_memory(void* memory) noexcept { std::free(memory); }
+
+}  // namespace kdray::detail

@@ -1,10 +1,10 @@
 #include "trace_run.h"
 
+#include <kdray/clock.h>
 #include <kdray/ray_sets.h>
 
 #include "process_stats.h"
 
-#include <chrono>
 #include <optional>
 
 namespace kdtrace {
@@ -26,7 +26,7 @@ TraceRun trace_on(bool host, const kdray::Scene& scene, const kdray::KdTree& tre
   const std::optional<kdray::PreparedTraversal> cpu_traversal =
       host ? std::optional<kdray::PreparedTraversal>(std::in_place, scene, tree) : std::nullopt;
   const double cpu_start = kdray::tool::cpu_seconds();
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = kdray::Clock::now();
   if (host) {
     cpu_traversal->closest(rays, run.hits, options);
   } else {
@@ -34,7 +34,7 @@ TraceRun trace_on(bool host, const kdray::Scene& scene, const kdray::KdTree& tre
     opencl_device.robust_traversal = options.path == kdray::TraversalPath::Robust;
     run.hits = kdray::trace_rays_opencl(scene, tree, rays, opencl_device, &run.opencl);
   }
-  run.seconds = host ? std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+  run.seconds = host ? kdray::seconds_since(start)
                      : run.opencl.trace_seconds;
   run.cpu_seconds = kdray::tool::cpu_seconds() - cpu_start;
   return run;

@@ -72,7 +72,8 @@ def main():
         if "normal_texture" in m:
             # kdray bends the shading normal only (no Mitsuba heuristics): Mitsuba's defaults flip a
             # mapped normal that faces away from the viewer and multiply by a shadow-terminator
-            # term, which moved the normal-mapped box's mean by up to 4% (BENCHMARKS.md).
+            # term, which moved the normal-mapped box's mean by up to 4% (bench/LOG.md,
+            # "The glTF plastic as Mitsuba 3's roughplastic").
             return {"type": "normalmap", "normalmap": texture(m["normal_texture"], True), "bsdf": surface,
                     "flip_invalid_normals": False, "use_shadowing_function": False}
         return surface

@@ -18,7 +18,7 @@
 
 /* Russian roulette from this bounce on, surviving with probability min(sqrt(max throughput), 1):
  * the square root keeps more dim paths alive than min(max throughput, 1) would, which costs a
- * few more rays and saves more variance (measured in BENCHMARKS.md, "Sampler"). */
+ * few more rays and saves more variance (measured in bench/LOG.md, "Sampler"). */
 #define PT_ROULETTE_START 4u
 
 typedef struct PtSceneData {

@@ -16,7 +16,7 @@
  * (pbrt-v4's) the spherical construction loses precision. Below the lower one, area sampling's
  * density, d^2 / (A cos), varies across the triangle by a few per cent at most, so it is nearly
  * as good and costs less than the solid angle's arctangent and the spherical construction. The
- * lower bound was chosen by error x cost on the Cornell box (BENCHMARKS.md, "traversal setup
+ * lower bound was chosen by error x cost on the Cornell box (bench/LOG.md, "traversal setup
  * and light-sampling cost"): 0.05 sr gave 7% fewer kernel instructions for 1.3% more error
  * than pbrt-v4's 3e-4. */
 #define PT_MIN_SPHERICAL_SOLID_ANGLE 0.05f

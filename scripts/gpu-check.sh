@@ -13,7 +13,7 @@
 #      on both, with the short and the full traversal stack, and compares the hit files byte for
 #      byte;
 #   5. writes OUT/gpu-check.json and OUT/gpu-check.txt: devices, test results, where and by how
-#      much anything differs, and GPU against CPU times (BENCHMARKS.md, "GPU check"); the
+#      much anything differs, and GPU against CPU times (bench/LOG.md, "GPU check"); the
 #      programs' own output goes to OUT/log-*.txt.
 # Usage: scripts/gpu-check.sh [--bin DIR] [--scenes DIR] [--corpus DIR] [--out DIR]
 #   --bin DIR     a folder (searched by name, a build folder will do) holding kdrender, kdtrace,

@@ -1,7 +1,6 @@
 #include "image_codec_loader.h"
 
 #include <kdray/error.h>
-#include <kdray/image_io.h>
 #include <kdray/module.h>
 
 #include <future>
@@ -35,7 +34,7 @@ const std::shared_future<LoadedCodec>& codec_load(std::launch policy) {
 
 }  // namespace
 
-void preload_image_io() { codec_load(std::launch::async); }
+void start_loading_image_codec() { codec_load(std::launch::async); }
 
 const ImageCodec& image_codec(const std::string& path) {
   const LoadedCodec& loaded = codec_load(std::launch::deferred).get();

@@ -334,4 +334,6 @@ Film read_film_exr(const std::string& path) {
   return film;
 }
 
+void preload_image_io() { start_loading_image_codec(); }
+
 }  // namespace kdray

@@ -4,6 +4,7 @@
 #include "opencl_runtime.h"
 
 #include <kdray/atomic_file.h>
+#include <kdray/clock.h>
 #include <kdray/embedded_kernels.h>
 #include <kdray/error.h>
 #include <kdray/util.h>
@@ -121,7 +122,7 @@ ProgramBuild Runtime::program(const std::string& entry_file, const std::string& 
   const std::string options =
       common_options_.empty() ? feature_options : feature_options + " " + common_options_;
   auto start = std::chrono::steady_clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  auto elapsed = [&] { return seconds_since(start); };
   std::string source = expand_kernel_source(entry_file);
   std::string key_text = source + '\0' + options + '\0' + info_.platform + '\0' + info_.name + '\0' + info_.driver_version;
   std::string key = hash_hex(XXH3_64bits(key_text.data(), key_text.size()));

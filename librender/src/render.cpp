@@ -4,12 +4,12 @@
 // build of the same code (render_host.cpp).
 #include "render_internal.h"
 
+#include <kdray/clock.h>
 #include <kdray/error.h>
 
 #include <kernels/pt_scene_args.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <exception>
@@ -22,11 +22,6 @@
 
 namespace kdray {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 uint32_t aov_mask(const RenderSettings& s) {
   return (s.aov_albedo ? PT_AOV_ALBEDO : 0) | (s.aov_normal ? PT_AOV_NORMAL : 0) | (s.aov_depth ? PT_AOV_DEPTH : 0);

@@ -34,6 +34,7 @@
 
 #include "render_internal.h"
 
+#include <kdray/clock.h>
 #include <kdray/threads.h>
 
 #include <kernels/kd_types.h>
@@ -126,7 +127,7 @@ std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tre
   stats.default_light = environment && !settings.environment;
   stats.build_source = "built in";
   stats.threads = host->threads();
-  stats.upload_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.upload_seconds = seconds_since(start);
   return host;
 }
 

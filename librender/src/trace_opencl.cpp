@@ -1,12 +1,12 @@
 // trace_rays_opencl: the kd_trace.cl kernel over a ray buffer (see trace_opencl.h).
 #include "device_scene.h"
 
+#include <kdray/clock.h>
 #include <kdray/trace_opencl.h>
 #include <kdray/traverse.h>
 
 #include <kernels/kd_trace_args.h>
 
-#include <chrono>
 
 namespace kdray {
 
@@ -32,10 +32,6 @@ TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu) {
 
 std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
                                          const DeviceSelection& device, TraceOpenClStats* stats_out) {
-  using Clock = std::chrono::steady_clock;
-  auto seconds_since = [](Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-  };
   TraceOpenClStats stats;
   cl::Runtime& runtime = cl::runtime_for(device);
   stats.device = runtime.info().name;

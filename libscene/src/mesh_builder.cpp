@@ -1,8 +1,8 @@
 #include "mesh_builder.h"
 
+#include <kdray/double3.h>
 #include <kdray/tangents.h>
 
-#include <array>
 #include <cmath>
 #include <limits>
 
@@ -14,15 +14,13 @@ constexpr uint8_t kHasNormal = 1, kHasUV = 2, kHasTangent = 4;
 bool is_finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // (b - a) x (c - a) in double precision.
-std::array<double, 3> cross(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double e1x = double(b.x) - a.x, e1y = double(b.y) - a.y, e1z = double(b.z) - a.z;
-  const double e2x = double(c.x) - a.x, e2y = double(c.y) - a.y, e2z = double(c.z) - a.z;
-  return {e1y * e2z - e1z * e2y, e1z * e2x - e1x * e2z, e1x * e2y - e1y * e2x};
+Double3 edge_cross(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return cross(double3(b) - double3(a), double3(c) - double3(a));
 }
 
 // Exactly zero area in double precision: collinear or coincident corners.
 bool has_zero_area(const Vec3& a, const Vec3& b, const Vec3& c) {
-  return cross(a, b, c) == std::array<double, 3>{0, 0, 0};
+  return edge_cross(a, b, c) == Double3{0, 0, 0};
 }
 
 }  // namespace
@@ -100,22 +98,22 @@ void MeshBuilder::fill_missing_normals(Scene& scene, const std::vector<uint32_t>
   for (size_t old = 0; old < new_index.size(); ++old)
     if (new_index[old] != std::numeric_limits<uint32_t>::max() && !(attributes_[old] & kHasNormal))
       missing[new_index[old]] = true;
-  std::vector<std::array<double, 3>> sum(scene.positions.size(), {0, 0, 0});
-  std::vector<std::array<double, 3>> first(scene.positions.size(), {0, 0, 0});
+  std::vector<Double3> sum(scene.positions.size(), {0, 0, 0});
+  std::vector<Double3> first(scene.positions.size(), {0, 0, 0});
   for (size_t t = 0; t < scene.indices.size(); t += 3) {
     const Vec3 &a = scene.positions[scene.indices[t]], &b = scene.positions[scene.indices[t + 1]],
                &c = scene.positions[scene.indices[t + 2]];
-    const std::array<double, 3> normal = cross(a, b, c);
+    const Double3 normal = edge_cross(a, b, c);
     for (int corner = 0; corner < 3; ++corner) {
       const uint32_t v = scene.indices[t + corner];
       if (!missing[v]) continue;
-      if (sum[v] == std::array<double, 3>{0, 0, 0}) first[v] = normal;
+      if (sum[v] == Double3{0, 0, 0}) first[v] = normal;
       for (int axis = 0; axis < 3; ++axis) sum[v][axis] += normal[axis];
     }
   }
   for (size_t v = 0; v < missing.size(); ++v) {
     if (!missing[v]) continue;
-    std::array<double, 3> n = sum[v];
+    Double3 n = sum[v];
     double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (!(length > 0)) {
       n = first[v];

@@ -1,54 +1,45 @@
 #include <kdray/tangents.h>
 
+#include <kdray/double3.h>
+
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 
 namespace kdray {
+// Double precision throughout (kdray/double3.h): tangents come from differences of nearby
+// positions and UVs.
 namespace {
 
-// Double precision throughout: tangents come from differences of nearby positions and UVs.
-using D3 = std::array<double, 3>;
-
-D3 d3(const Vec3& v) { return {v.x, v.y, v.z}; }
-D3 operator+(const D3& a, const D3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-D3 operator-(const D3& a, const D3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-D3 operator*(const D3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-double dot(const D3& a, const D3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-D3 cross(const D3& a, const D3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
 // v / |v|, or the zero vector when v is zero or not finite.
-D3 unit_or_zero(const D3& v) {
+Double3 unit_or_zero(const Double3& v) {
   const double length = std::sqrt(dot(v, v));
-  return length > 0 && std::isfinite(length) ? v * (1 / length) : D3{0, 0, 0};
+  return length > 0 && std::isfinite(length) ? v * (1 / length) : Double3{0, 0, 0};
 }
 
 // v without its component along the unit (or zero) vector n.
-D3 in_plane(const D3& v, const D3& n) { return v - n * dot(n, v); }
+Double3 in_plane(const Double3& v, const Double3& n) { return v - n * dot(n, v); }
 
 // A unit vector perpendicular to n: n crossed with the axis least aligned with it.
-D3 any_perpendicular(const D3& n) {
-  const D3 a{std::abs(n[0]), std::abs(n[1]), std::abs(n[2])};
-  const D3 axis = a[0] <= a[1] && a[0] <= a[2] ? D3{1, 0, 0} : a[1] <= a[2] ? D3{0, 1, 0} : D3{0, 0, 1};
-  const D3 t = unit_or_zero(cross(axis, n));
-  return dot(t, t) > 0 ? t : D3{1, 0, 0};
+Double3 any_perpendicular(const Double3& n) {
+  const Double3 a{std::abs(n[0]), std::abs(n[1]), std::abs(n[2])};
+  const Double3 axis = a[0] <= a[1] && a[0] <= a[2] ? Double3{1, 0, 0} : a[1] <= a[2] ? Double3{0, 1, 0} : Double3{0, 0, 1};
+  const Double3 t = unit_or_zero(cross(axis, n));
+  return dot(t, t) > 0 ? t : Double3{1, 0, 0};
 }
 
 // A triangle's dp/du and dp/dv, and the sign of its UV area: +1 where the UVs run
 // counter-clockwise like the positions, -1 where they are mirrored, 0 where the UV area is
 // zero (or the derivatives are not finite) and the triangle says nothing about tangents.
 struct UvFrame {
-  D3 dpdu{}, dpdv{};
+  Double3 dpdu{}, dpdv{};
   int sign = 0;
 };
 
 UvFrame uv_frame(const Scene& scene, size_t triangle) {
   const uint32_t* corner = &scene.indices[3 * triangle];
-  const D3 p0 = d3(scene.positions[corner[0]]);
-  const D3 e1 = d3(scene.positions[corner[1]]) - p0, e2 = d3(scene.positions[corner[2]]) - p0;
+  const Double3 p0 = double3(scene.positions[corner[0]]);
+  const Double3 e1 = double3(scene.positions[corner[1]]) - p0, e2 = double3(scene.positions[corner[2]]) - p0;
   const Vec2 &t0 = scene.uvs[corner[0]], &t1 = scene.uvs[corner[1]], &t2 = scene.uvs[corner[2]];
   const double du1 = double(t1.u) - t0.u, dv1 = double(t1.v) - t0.v;
   const double du2 = double(t2.u) - t0.u, dv2 = double(t2.v) - t0.v;
@@ -101,35 +92,35 @@ void split_mirrored_vertices(Scene& scene, std::vector<bool>& missing) {
 }
 
 // Unit vertex normals: the scene's, or the area-weighted sum of the triangles' around each vertex.
-std::vector<D3> vertex_normals(const Scene& scene) {
-  std::vector<D3> normals(scene.positions.size(), D3{0, 0, 0});
+std::vector<Double3> vertex_normals(const Scene& scene) {
+  std::vector<Double3> normals(scene.positions.size(), Double3{0, 0, 0});
   if (!scene.normals.empty()) {
-    for (size_t v = 0; v < normals.size(); ++v) normals[v] = unit_or_zero(d3(scene.normals[v]));
+    for (size_t v = 0; v < normals.size(); ++v) normals[v] = unit_or_zero(double3(scene.normals[v]));
     return normals;
   }
   for (size_t t = 0; t < scene.triangle_count(); ++t) {
     const uint32_t* corner = &scene.indices[3 * t];
-    const D3 p0 = d3(scene.positions[corner[0]]);
-    const D3 area_normal = cross(d3(scene.positions[corner[1]]) - p0, d3(scene.positions[corner[2]]) - p0);
+    const Double3 p0 = double3(scene.positions[corner[0]]);
+    const Double3 area_normal = cross(double3(scene.positions[corner[1]]) - p0, double3(scene.positions[corner[2]]) - p0);
     for (int c = 0; c < 3; ++c) normals[corner[c]] = normals[corner[c]] + area_normal;
   }
-  for (D3& n : normals) n = unit_or_zero(n);
+  for (Double3& n : normals) n = unit_or_zero(n);
   return normals;
 }
 
 // The angle of a triangle's corner `c`: MikkTSpace's weight, so that a vertex's tangent does not
 // depend on how the polygons around it were cut into triangles.
 double corner_angle(const Scene& scene, const uint32_t* corner, int c) {
-  const D3 p = d3(scene.positions[corner[c]]);
-  const D3 a = unit_or_zero(d3(scene.positions[corner[(c + 1) % 3]]) - p);
-  const D3 b = unit_or_zero(d3(scene.positions[corner[(c + 2) % 3]]) - p);
+  const Double3 p = double3(scene.positions[corner[c]]);
+  const Double3 a = unit_or_zero(double3(scene.positions[corner[(c + 1) % 3]]) - p);
+  const Double3 b = unit_or_zero(double3(scene.positions[corner[(c + 2) % 3]]) - p);
   return std::acos(std::clamp(dot(a, b), -1.0, 1.0));
 }
 
 // Computes the tangents of the vertices marked missing into `tangents` (one per vertex).
 void compute_missing(const Scene& scene, const std::vector<bool>& missing, std::vector<Tangent>& tangents) {
-  const std::vector<D3> normals = vertex_normals(scene);
-  std::vector<D3> sum_dpdu(scene.positions.size(), D3{0, 0, 0}), sum_dpdv(scene.positions.size(), D3{0, 0, 0});
+  const std::vector<Double3> normals = vertex_normals(scene);
+  std::vector<Double3> sum_dpdu(scene.positions.size(), Double3{0, 0, 0}), sum_dpdv(scene.positions.size(), Double3{0, 0, 0});
   for (size_t t = 0; t < scene.triangle_count(); ++t) {
     const UvFrame frame = uv_frame(scene, t);
     if (frame.sign == 0) continue;
@@ -144,8 +135,8 @@ void compute_missing(const Scene& scene, const std::vector<bool>& missing, std::
   }
   for (size_t v = 0; v < missing.size(); ++v) {
     if (!missing[v]) continue;
-    const D3& n = normals[v];
-    D3 t = unit_or_zero(in_plane(sum_dpdu[v], n));
+    const Double3& n = normals[v];
+    Double3 t = unit_or_zero(in_plane(sum_dpdu[v], n));
     if (dot(t, t) == 0) t = any_perpendicular(n);
     const float w = dot(cross(n, t), sum_dpdv[v]) < 0 ? -1.0f : 1.0f;
     tangents[v] = {float(t[0]), float(t[1]), float(t[2]), w};

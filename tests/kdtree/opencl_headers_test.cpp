@@ -75,7 +75,7 @@ class OpenClDevice {
   // options, with the kernels/ folder on the include path; returns the build log on failure, an
   // empty string on success. On a GPU both matter: NVIDIA's driver otherwise takes the headers'
   // pointers as __generic and refuses to pass them to their private array parameters, and its
-  // float division is not the CPU's (BENCHMARKS.md, "GPU check").
+  // float division is not the CPU's (bench/LOG.md, "GPU check").
   std::string build(const std::string& options, const char* source = kProgramSource) {
     cl_int status = CL_SUCCESS;
     program_ = clCreateProgramWithSource(context_, 1, &source, nullptr, &status);

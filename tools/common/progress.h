@@ -3,10 +3,11 @@
 // run for a second, so quick runs stay silent.
 #pragma once
 
+#include <kdray/clock.h>
+
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <string>
 
@@ -17,13 +18,13 @@ class ProgressBar {
   ProgressBar(std::string tool_name, bool enabled)
       : tool_name_(std::move(tool_name)),
         enabled_(enabled && isatty(STDERR_FILENO) != 0),
-        start_(std::chrono::steady_clock::now()) {}
+        start_(kdray::Clock::now()) {}
   ~ProgressBar() { finish(); }
 
   // `fraction` of the work is done; `detail` follows the bar (e.g. "12/64 spp").
   void update(double fraction, const std::string& detail = "") {
     if (!enabled_) return;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double elapsed = kdray::seconds_since(start_);
     if (elapsed < 1.0) return;
     constexpr int kWidth = 40;
     const int filled = std::clamp(static_cast<int>(fraction * kWidth), 0, kWidth);
@@ -44,7 +45,7 @@ class ProgressBar {
   std::string tool_name_;
   bool enabled_;
   bool drawn_ = false;
-  std::chrono::steady_clock::time_point start_;
+  kdray::Clock::time_point start_;
 };
 
 }  // namespace kdray::tool

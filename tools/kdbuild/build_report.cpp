@@ -23,10 +23,6 @@ uint64_t tree_bytes(const Report& r) {
 
 }  // namespace
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 nlohmann::json report_json(const Report& r) {
   nlohmann::json out = kdray::tool::tree_stats_json(r.tree);
   out.update({{"scene", r.scene_path}, {"tree", r.tree_path}, {"scene_hash", kdray::hash_hex(r.scene_hash)},

@@ -6,7 +6,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <string>
 #include <vector>
 
@@ -25,7 +24,5 @@ struct Report {
 
 nlohmann::json report_json(const Report& report);
 std::string report_text(const Report& report);
-
-double seconds_since(std::chrono::steady_clock::time_point start);
 
 }  // namespace kdbuild

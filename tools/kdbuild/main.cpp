@@ -2,6 +2,7 @@
 // kdbuild --cache DIR SCENE [OUTPUT]: takes the tree from a tree cache, building and storing it on a miss.
 #include "build_report.h"
 
+#include <kdray/clock.h>
 #include <kdray/kdtree.h>
 #include <kdray/scene_file.h>
 #include <kdray/tree_cache.h>
@@ -10,7 +11,6 @@
 #include "progress.h"
 #include "tool_main.h"
 
-#include <chrono>
 #include <cstdio>
 #include <string>
 
@@ -67,30 +67,30 @@ int main(int argc, char** argv) {
     kdbuild::Report report;
     report.scene_path = scene_path;
     report.tree_path = tree_path;
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = kdray::Clock::now();
     const kdray::Scene scene = kdray::read_scene(scene_path);
     report.scene_hash = scene.content_hash;
-    report.load_seconds = kdbuild::seconds_since(start);
+    report.load_seconds = kdray::seconds_since(start);
     kdray::check_memory_estimate(scene_path, "building its tree",
                                  kBuildBytesPerTriangle * scene.triangle_count(), max_memory);
 
     kdray::tool::ProgressBar progress("kdbuild", !output.quiet);
     const kdray::BuildControl control{threads, [&](double fraction) { progress.update(fraction); }, &report.phases};
-    const auto build_start = std::chrono::steady_clock::now();
+    const auto build_start = kdray::Clock::now();
     const double cpu_start = kdray::tool::cpu_seconds();
     if (cache_folder.empty()) {
       report.tree = kdray::build_kdtree(scene, settings, control);
-      report.build_seconds = kdbuild::seconds_since(build_start);
-      const auto write_start = std::chrono::steady_clock::now();
+      report.build_seconds = kdray::seconds_since(build_start);
+      const auto write_start = kdray::Clock::now();
       kdray::write_tree(tree_path, report.tree);
-      report.write_seconds = kdbuild::seconds_since(write_start);
+      report.write_seconds = kdray::seconds_since(write_start);
     } else {
       kdray::TreeCache trees(cache_folder, [](const std::string& line) { kdray::tool::print_warning("kdbuild", line); });
       kdray::CachedTree cached = kdray::cached_tree(trees, scene, scene_path, settings, control, tree_path);
       report.cache = cached.hit ? "hit" : "miss";
       report.cache_entry = cached.entry;
       report.tree = std::move(cached.tree);
-      report.build_seconds = kdbuild::seconds_since(build_start);
+      report.build_seconds = kdray::seconds_since(build_start);
       if (cache_max_bytes > 0) report.evicted = trees.evict(cache_max_bytes, report.tree.key);
     }
     report.build_cpu_seconds = kdray::tool::cpu_seconds() - cpu_start;

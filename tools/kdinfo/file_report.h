@@ -3,11 +3,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <kdray/clock.h>
 #include <kdray/error.h>
 
 #include "text_format.h"
 
-#include <chrono>
 #include <cstdio>
 #include <string>
 
@@ -30,9 +30,9 @@ template <typename Load, typename Describe, typename DetailsText>
 void add_verified_details(FileReport& report, const char* checks, Load&& load, Describe&& describe,
                           DetailsText&& details_text) {
   try {
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = kdray::Clock::now();
     const auto loaded = load();
-    const double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double load_seconds = kdray::seconds_since(start);
     const nlohmann::json details = describe(loaded);
     report.json.update(details);
     report.json["load_seconds"] = load_seconds;

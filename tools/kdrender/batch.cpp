@@ -3,15 +3,16 @@
 #include "jobs.h"
 #include "render_frame.h"
 
+#include <kdray/clock.h>
+
 #include <tool_main.h>
 
-#include <chrono>
 #include <cstdio>
 
 namespace kdrender {
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using kdray::Clock;
 
 struct FrameOutcome {
   enum Status { Rendered, Skipped, Failed } status = Rendered;
@@ -66,10 +67,10 @@ int run_batch(const kdray::Scene& scene, const kdray::KdTree& tree, const FrameO
     if (report) {
       std::fprintf(stderr, "kdrender: frame %zu/%zu %s: %s (%.2f s)\n", i + 1, frames.size(), frame.output.c_str(),
                    outcome.status == FrameOutcome::Skipped ? "already present, skipped" : status_name(outcome.status),
-                   std::chrono::duration<double>(Clock::now() - frame_start).count());
+                   kdray::seconds_since(frame_start));
     }
   }
-  const double seconds = std::chrono::duration<double>(Clock::now() - start).count() + load_seconds;
+  const double seconds = kdray::seconds_since(start) + load_seconds;
   const size_t rendered = counts[FrameOutcome::Rendered], skipped = counts[FrameOutcome::Skipped],
                failed = counts[FrameOutcome::Failed];
 

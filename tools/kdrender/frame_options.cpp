@@ -1,11 +1,11 @@
 #include "frame_options.h"
 
+#include <kdray/clock.h>
 #include <kdray/image_io.h>
 #include <kdray/util.h>
 
 #include <device_option.h>
 
-#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -137,7 +137,7 @@ std::shared_ptr<const kdray::Environment> EnvironmentCache::get(const FrameOptio
   key << o.env_image << '\n' << o.env_color << '\n' << o.env_strength << '\n' << o.env_rotate;
   auto& cached = loaded_[key.str()];
   if (cached) return cached;
-  auto start = std::chrono::steady_clock::now();
+  auto start = kdray::Clock::now();
   kdray::Environment env;
   if (!o.env_image.empty()) {
     env = kdray::load_environment(o.env_image);
@@ -151,7 +151,7 @@ std::shared_ptr<const kdray::Environment> EnvironmentCache::get(const FrameOptio
   env.strength = o.env_strength;
   env.rotate_degrees = o.env_rotate;
   cached = std::make_shared<const kdray::Environment>(std::move(env));
-  *load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  *load_seconds = kdray::seconds_since(start);
   return cached;
 }
 

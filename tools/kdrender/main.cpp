@@ -11,6 +11,7 @@
 #include "frame_options.h"
 #include "render_frame.h"
 
+#include <kdray/clock.h>
 #include <kdray/image_io.h>
 #include <kdray/kdtree.h>
 #include <kdray/render.h>
@@ -21,7 +22,6 @@
 #include <progress.h>
 #include <tool_main.h>
 
-#include <chrono>
 #include <filesystem>
 #include <optional>
 #include <utility>
@@ -31,9 +31,8 @@ namespace {
 
 using kdray::tool::kExitOk;
 using kdray::tool::UsageError;
-using Clock = std::chrono::steady_clock;
+using kdray::Clock;
 
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 struct Options {
   std::string scene_path, tree_path, cache_folder;
@@ -122,7 +121,7 @@ int render(const Options& o) {
   kdray::KdTree tree = kdray::tree_for_scene(scene, o.scene_path, o.tree_path, o.cache_folder, [](const std::string& line) {
     kdray::tool::print_warning("kdrender", line);
   });
-  double load_seconds = seconds_since(load_start);
+  double load_seconds = kdray::seconds_since(load_start);
   if (!o.jobs_path.empty()) {
     return kdrender::run_batch(scene, tree, o.frame, {o.scene_path, o.jobs_path, o.resume, o.flags.json, o.flags.quiet},
                                load_seconds);

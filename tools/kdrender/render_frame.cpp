@@ -1,11 +1,11 @@
 #include "render_frame.h"
 
+#include <kdray/clock.h>
 #include <kdray/image_io.h>
 #include <kdray/util.h>
 
 #include <tool_main.h>
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 
@@ -26,9 +26,9 @@ FrameResult render_frame(const kdray::Scene& scene, const kdray::KdTree& tree, c
     if (progress) progress(done, total);
   };
   result.film = kdray::render(scene, tree, frame.settings, frame.device, &result.stats, progress_then_preload);
-  auto write_start = std::chrono::steady_clock::now();
+  auto write_start = kdray::Clock::now();
   kdray::write_film_image(frame.output, result.film);
-  result.write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
+  result.write_seconds = kdray::seconds_since(write_start);
   return result;
 }
 

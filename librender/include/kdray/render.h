@@ -17,7 +17,7 @@
 namespace kdray {
 
 enum class RenderForm {
-  Megakernel,  // one kernel runs whole paths (the default: faster on PoCL, see BENCHMARKS.md)
+  Megakernel,  // one kernel runs whole paths (the default: faster on PoCL, bench/LOG.md, "Renderer")
   Wavefront,   // one kernel per path step over a buffer of paths (kept for the comparison)
 };
 

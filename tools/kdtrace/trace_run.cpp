@@ -1,0 +1,49 @@
+#include "trace_run.h"
+
+#include <kdray/clock.h>
+#include <kdray/ray_sets.h>
+
+#include "process_stats.h"
+
+#include <optional>
+
+namespace kdtrace {
+
+std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene& scene, const kdray::KdTree& tree) {
+  std::vector<RayRecord> rays;
+  if (!o.rays_path.empty()) rays = kdray::read_rays(o.rays_path);
+  else if (o.generate == "camera") rays = kdray::camera_rays(scene, o.width, o.height);
+  else if (o.generate == "random") rays = kdray::random_rays(tree.bounds, o.count, o.seed);
+  else rays = kdray::hard_case_rays(scene, tree, o.count, o.seed);
+  if (!o.write_rays_path.empty()) kdray::write_rays(o.write_rays_path, rays);
+  return rays;
+}
+
+TraceRun trace_on(bool host, const kdray::Scene& scene, const kdray::KdTree& tree, const std::vector<RayRecord>& rays,
+                  const kdray::TraceOptions& options, kdray::DeviceSelection opencl_device) {
+  TraceRun run;
+  // Gathering the triangle vertices is set-up, like the OpenCL upload: not part of the rate.
+  const std::optional<kdray::PreparedTraversal> cpu_traversal =
+      host ? std::optional<kdray::PreparedTraversal>(std::in_place, scene, tree) : std::nullopt;
+  const double cpu_start = kdray::tool::cpu_seconds();
+  const auto start = kdray::Clock::now();
+  if (host) {
+    cpu_traversal->closest(rays, run.hits, options);
+  } else {
+    opencl_device.short_stack_size = kdray::kernel_stack_size(options.stack);
+    opencl_device.robust_traversal = options.path == kdray::TraversalPath::Robust;
+    run.hits = kdray::trace_rays_opencl(scene, tree, rays, opencl_device, &run.opencl);
+  }
+  run.seconds = host ? kdray::seconds_since(start)
+                     : run.opencl.trace_seconds;
+  run.cpu_seconds = kdray::tool::cpu_seconds() - cpu_start;
+  return run;
+}
+
+kdray::TraversalWork count_work(const kdray::Scene& scene, const kdray::KdTree& tree, const std::vector<RayRecord>& rays,
+                                unsigned threads) {
+  std::vector<HitRecord> counted_hits;
+  return kdray::PreparedTraversal(scene, tree).count_work(rays, counted_hits, {threads, kdray::TraversalStack::Short});
+}
+
+}  // namespace kdtrace

@@ -1,0 +1,36 @@
+// The rays kdtrace traces and where it traces them: on the host, libkdtree's CPU traversal; on
+// an OpenCL device, librender's kd_trace kernel. Both run the same kernels/kd_traverse.h.
+#pragma once
+
+#include "trace_options.h"
+
+#include <kdray/kdtree.h>
+#include <kdray/ray_files.h>
+#include <kdray/scene.h>
+#include <kdray/trace_opencl.h>
+#include <kdray/traverse.h>
+
+#include <vector>
+
+namespace kdtrace {
+
+struct TraceRun {
+  std::vector<HitRecord> hits;
+  double seconds = 0;      // tracing only: for OpenCL the kernel time, rays already on the device
+  double cpu_seconds = 0;  // user + system: with the wall time, tells a busy machine
+  kdray::TraceOpenClStats opencl;
+};
+
+// The rays of --rays, or the generated set of --generate (also written to --write-rays).
+std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene& scene, const kdray::KdTree& tree);
+
+TraceRun trace_on(bool host, const kdray::Scene& scene, const kdray::KdTree& tree, const std::vector<RayRecord>& rays,
+                  const kdray::TraceOptions& options, kdray::DeviceSelection opencl_device);
+
+// Per-ray work from a second, counting pass of the same traversal on the CPU (kept out of the
+// timed run); the kernel runs the same code, so its hits and work are the same. The count is of
+// the default traversal (the fast path where it applies) whatever --traversal says.
+kdray::TraversalWork count_work(const kdray::Scene& scene, const kdray::KdTree& tree, const std::vector<RayRecord>& rays,
+                                unsigned threads);
+
+}  // namespace kdtrace

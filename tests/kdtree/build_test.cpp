@@ -21,6 +21,17 @@ bool same_tree(const KdTree& a, const KdTree& b) {
          std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(KdNode)) == 0;
 }
 
+// FNV-1a 64 over the node and leaf-triangle arrays: what the tree's bytes are, in one number.
+uint64_t tree_fingerprint(const KdTree& tree) {
+  uint64_t hash = 0xcbf29ce484222325ull;
+  auto feed = [&](const void* data, size_t size) {
+    for (size_t i = 0; i < size; ++i) hash = (hash ^ static_cast<const unsigned char*>(data)[i]) * 0x100000001b3ull;
+  };
+  feed(tree.nodes.data(), tree.nodes.size() * sizeof(KdNode));
+  feed(tree.leaf_triangles.data(), tree.leaf_triangles.size() * sizeof(uint32_t));
+  return hash;
+}
+
 // Every triangle with finite corners is in some leaf.
 void expect_all_triangles_referenced(const Scene& scene, const KdTree& tree) {
   std::vector<bool> seen(scene.triangle_count(), false);
@@ -172,6 +183,16 @@ TEST(KdBuild, ThreadCountDoesNotChangeTheTree) {
     const KdTree many = build_kdtree(scene, BuildSettings{}, BuildControl{threads, {}});
     EXPECT_TRUE(same_tree(one, many)) << threads << " threads";
   }
+}
+
+// The exact sweep's trees, pinned to the bytes it built before the binned builder existed.
+TEST(KdBuild, ExactBuilderKeepsItsTrees) {
+  BuildSettings exact;
+  EXPECT_EQ(tree_fingerprint(build_kdtree(test::triangle_soup(25000, 17), exact)), 0xa1ed67ad0a783883ull);
+  EXPECT_EQ(tree_fingerprint(build_kdtree(test::icosphere_scene(5, {0.25f, 0, 0}, 1), exact)), 0x8813462f65c7664dull);
+  std::string path;
+  KDRAY_CORPUS_FILE(path, "dragon/dragon_vcg_23k.ply");
+  EXPECT_EQ(tree_fingerprint(build_kdtree(test::mesh_file(path), exact)), 0x4b5f4b325c80f8c7ull);
 }
 
 TEST(KdBuild, ReportsItsPhaseTimes) {

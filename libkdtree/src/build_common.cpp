@@ -169,16 +169,8 @@ CostModel cost_model_of(const BuildSettings& settings) {
 
 void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, uint64_t triangles,
                 const CostModel& cost, SplitChoice& best) {
-  // Half the surface area of a child below position p is cross + (p - lo) * girth: the two
-  // faces across the axis plus the four along it.
-  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  const double extent_u = static_cast<double>(voxel.max[u]) - voxel.min[u];
-  const double extent_v = static_cast<double>(voxel.max[v]) - voxel.min[v];
-  const double cross = extent_u * extent_v, girth = extent_u + extent_v;
-  const double lo = voxel.min[axis], hi = voxel.max[axis];
-  const double half_area = cross + (hi - lo) * girth;
-  if (!(half_area > 0.0)) return;  // a voxel without area: no split can pay
-  const double inverse_half_area = 1.0 / half_area;
+  const SplitAreas areas(voxel, axis);
+  if (!areas.has_area()) return;
   uint64_t n_left = 0, n_right = triangles;
   // A local copy: `best` might alias the events, which would force reloads.
   SplitChoice best_here = best;
@@ -197,24 +189,7 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
       ++i;
     } while (i < count && events[i].position == position);
     n_right -= ending + planar;
-    // A child that is the whole voxel must give exactly 1 (the empty bonus depends on it).
-    const double p_left = position == hi ? 1.0 : (cross + (position - lo) * girth) * inverse_half_area;
-    const double p_right = position == lo ? 1.0 : (cross + (hi - position) * girth) * inverse_half_area;
-    double split_cost;
-    bool planar_left;
-    if (planar == 0) {
-      // Both sides give the same number; comparing it with itself keeps what two calls give
-      // (true unless it is NaN).
-      split_cost = cost.split_cost(p_left, p_right, n_left, n_right);
-      planar_left = split_cost <= split_cost;
-    } else {
-      const double planar_left_cost = cost.split_cost(p_left, p_right, n_left + planar, n_right);
-      const double planar_right_cost = cost.split_cost(p_left, p_right, n_left, n_right + planar);
-      planar_left = planar_left_cost <= planar_right_cost;
-      split_cost = planar_left ? planar_left_cost : planar_right_cost;
-    }
-    if (best_here.axis < 0 || split_cost < best_here.cost)
-      best_here = SplitChoice{split_cost, axis, position, planar_left};
+    consider_split(cost, areas, axis, position, n_left, n_right, planar, best_here);
     n_left += starting + planar;
   }
   best = best_here;
@@ -286,6 +261,8 @@ void validate_settings(const BuildSettings& settings) {
     throw Error("", "empty bonus must be in (0, 1]");
   if (settings.max_depth > BuildSettings::kMaxDepthLimit)
     throw Error("", "max depth must be at most " + std::to_string(BuildSettings::kMaxDepthLimit));
+  if (settings.binned_above != 0 && (settings.bins < 2 || settings.bins > BuildSettings::kMaxBins))
+    throw Error("", "bins must be from 2 to " + std::to_string(BuildSettings::kMaxBins));
 }
 
 // The root of both builders: the finite triangles, their bounds and the root voxel.

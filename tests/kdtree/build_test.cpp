@@ -170,7 +170,9 @@ TEST(KdBuild, ReferenceBuilderAgreesOnTheDragon) {
   std::string path;
   KDRAY_CORPUS_FILE(path, "dragon/dragon_vcg_23k.ply");
   const Scene scene = test::mesh_file(path);
-  EXPECT_TRUE(same_tree(build_kdtree(scene, BuildSettings{}), test::build_kdtree_by_resorting(scene, BuildSettings{})));
+  BuildSettings exact;
+  exact.binned_above = 0;
+  EXPECT_TRUE(same_tree(build_kdtree(scene, exact), test::build_kdtree_by_resorting(scene, exact)));
 }
 
 // More threads than cores (they are taken since kdray/threads.h) let a waiting thread pick up other
@@ -188,6 +190,7 @@ TEST(KdBuild, ThreadCountDoesNotChangeTheTree) {
 // The exact sweep's trees, pinned to the bytes it built before the binned builder existed.
 TEST(KdBuild, ExactBuilderKeepsItsTrees) {
   BuildSettings exact;
+  exact.binned_above = 0;
   EXPECT_EQ(tree_fingerprint(build_kdtree(test::triangle_soup(25000, 17), exact)), 0xa1ed67ad0a783883ull);
   EXPECT_EQ(tree_fingerprint(build_kdtree(test::icosphere_scene(5, {0.25f, 0, 0}, 1), exact)), 0x8813462f65c7664dull);
   std::string path;

@@ -18,12 +18,21 @@ TreeStats compute_tree_stats(const KdTree& tree, uint64_t scene_triangles) {
   auto relative_area = [&](const detail::Box3& box) {
     return root_area > 0.0 ? detail::surface_area(box) / root_area : 1.0;
   };
+  // The cost the builder minimises, C = lambda * (K_T + P_L C_L + P_R C_R) for an inner node
+  // (lambda: the empty bonus when a child is an empty leaf and neither child is the whole
+  // voxel, else 1) and C = K_I N for a leaf, summed node by node: each node's term is weighted
+  // by its relative area and by the lambdas of the inner nodes above it (`weight`).
+  const detail::CostModel cost = detail::cost_model_of(tree.settings);
+  auto is_empty_leaf = [&](uint32_t index) {
+    return kd_node_is_leaf(tree.nodes[index]) && kd_leaf_count(tree.nodes[index]) == 0;
+  };
   struct Pending {
     uint32_t node;
     uint32_t depth;
+    double weight;
     detail::Box3 voxel;
   };
-  std::vector<Pending> stack{{0, 0, root}};
+  std::vector<Pending> stack{{0, 0, 1.0, root}};
   uint64_t depth_sum = 0, non_empty_leaves = 0;
   while (!stack.empty()) {
     const Pending item = stack.back();
@@ -35,15 +44,19 @@ TreeStats compute_tree_stats(const KdTree& tree, uint64_t scene_triangles) {
       if (count == 0) ++stats.empty_leaves; else ++non_empty_leaves;
       depth_sum += item.depth;
       stats.max_depth = std::max(stats.max_depth, item.depth);
-      stats.sah_cost += tree.settings.intersection_cost * count * relative_area(item.voxel);
+      stats.sah_cost += item.weight * cost.leaf_cost(count) * relative_area(item.voxel);
       continue;
     }
     ++stats.inner_nodes;
-    stats.sah_cost += tree.settings.traversal_cost * relative_area(item.voxel);
     const int axis = static_cast<int>(kd_node_axis(node));
     const float split = kd_node_split(node);
-    stack.push_back({kd_node_far_child(node), item.depth + 1, detail::above_plane(item.voxel, axis, split)});
-    stack.push_back({item.node + 1, item.depth + 1, detail::below_plane(item.voxel, axis, split)});
+    const detail::SplitAreas areas(item.voxel, axis);
+    const bool whole_voxel_child = areas.below(split) == 1.0 || areas.above(split) == 1.0;
+    const bool empty_child = is_empty_leaf(item.node + 1) || is_empty_leaf(kd_node_far_child(node));
+    const double weight = item.weight * (empty_child && !whole_voxel_child ? cost.empty_bonus : 1.0);
+    stats.sah_cost += weight * cost.traversal * relative_area(item.voxel);
+    stack.push_back({kd_node_far_child(node), item.depth + 1, weight, detail::above_plane(item.voxel, axis, split)});
+    stack.push_back({item.node + 1, item.depth + 1, weight, detail::below_plane(item.voxel, axis, split)});
   }
   stats.mean_leaf_depth = static_cast<double>(depth_sum) / static_cast<double>(stats.leaves);
   stats.mean_triangles_per_leaf =

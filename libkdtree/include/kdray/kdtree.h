@@ -54,7 +54,9 @@ struct TreeStats {
   double mean_leaf_depth = 0;
   double mean_triangles_per_leaf = 0;  // over non-empty leaves
   double references_per_triangle = 0;
-  double sah_cost = 0;             // K_T * sum SA(inner)/SA(root) + K_I * sum N * SA(leaf)/SA(root)
+  // The builder's cost of the whole tree, C(root) with C = lambda (K_T + P_L C_L + P_R C_R) for
+  // an inner node and K_I N for a leaf (formats/kdtree.md).
+  double sah_cost = 0;
 };
 
 struct KdTree {

@@ -29,11 +29,11 @@ KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const Bui
     phase = std::chrono::duration<double>(now - last).count();
     last = now;
   };
-  detail::RootWork root = detail::prepare_root(scene);
-  lap(timings.prepare);
-  const detail::Box3 voxel = root.voxel;
-  detail::Subtree built;
+  KdTree tree;
   run_with_threads(control.threads, [&] {
+    detail::RootWork root = detail::prepare_root(scene);
+    lap(timings.prepare);
+    const detail::Box3 voxel = root.voxel;
     detail::BuildContext context(scene, settings, control, root.triangles.size());
     detail::Piece root_piece;
     if (detail::binned(settings, root.triangles.size())) {
@@ -47,12 +47,12 @@ KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const Bui
       detail::build_exact_subtree(context, work, root_piece);
     }
     lap(timings.subdivide);
-    built = detail::flatten(std::move(root_piece));
+    detail::Subtree built = detail::flatten(std::move(root_piece));
     lap(timings.assemble);
+    if (control.progress) control.progress(1.0);
+    tree = detail::finish_tree(scene, settings, voxel, std::move(built));
+    lap(timings.statistics);
   });
-  if (control.progress) control.progress(1.0);
-  KdTree tree = detail::finish_tree(scene, settings, voxel, std::move(built));
-  lap(timings.statistics);
   if (control.timings) *control.timings = timings;
   return tree;
 }

@@ -50,7 +50,7 @@ report["max_rss_mib"] = int(re.search(r"Maximum resident set size \(kbytes\): (\
 print(json.dumps(report))
 PY
     done
-    ray_file="$work/$name.rays"
+    ray_file="$work/$name.$rays.rays"
     [[ -f "$ray_file" ]] || "$KDTRACE" "$scene" "$tree" --generate random --count "$rays" --seed 1 \
       --write-rays "$ray_file" --json > /dev/null
     for ((run = 0; run < runs; ++run)); do

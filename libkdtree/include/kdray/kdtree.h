@@ -22,8 +22,8 @@ struct BuildSettings {
   static constexpr float kDefaultEmptyBonus = 0.8f;         // lambda when one side is empty
   static constexpr uint32_t kAutoMaxDepthCap = 48;          // cap of 8 + 1.3 log2 N
   static constexpr uint32_t kMaxDepthLimit = KD_MAX_TREE_DEPTH;  // the full traversal stack
-  static constexpr uint32_t kDefaultBinnedAbove = 16384;  // nodes of more triangles are binned
-  static constexpr uint32_t kDefaultBins = 128;           // per axis
+  static constexpr uint32_t kDefaultBinnedAbove = 32768;  // nodes of more triangles are binned
+  static constexpr uint32_t kDefaultBins = 256;           // per axis
   static constexpr uint32_t kMaxBins = 1u << 16;
 
   float traversal_cost = kDefaultTraversalCost;

@@ -299,7 +299,7 @@ class EventBuilder {
 }  // namespace
 
 NodeWork node_with_events(const Box3& voxel, uint32_t depth, std::vector<uint32_t>&& triangles,
-                          std::vector<Box3>&& bounds, bool perfect_splits) {
+                          std::vector<Box3> bounds, bool perfect_splits) {
   NodeWork work;
   work.voxel = voxel;
   work.depth = depth;

@@ -19,9 +19,10 @@ struct NodeWork {
 };
 
 // The node of `triangles` (in increasing index order) whose bounds in `voxel` are `bounds`,
-// with its events sorted on each axis (in parallel for a large node).
+// with its events sorted on each axis (in parallel for a large node). `bounds` is taken by
+// value, so that a caller who moves them in frees them here when perfect splits drop them.
 NodeWork node_with_events(const Box3& voxel, uint32_t depth, std::vector<uint32_t>&& triangles,
-                          std::vector<Box3>&& bounds, bool perfect_splits);
+                          std::vector<Box3> bounds, bool perfect_splits);
 
 // Builds the subtree of `work` into `out`; large nodes build their children in parallel.
 void build_exact_subtree(BuildContext& context, NodeWork& work, Piece& out);

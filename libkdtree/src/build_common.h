@@ -2,7 +2,8 @@
 // O(N log^2 N) reference builder in tests/kdtree share, so that "same candidates, cost and
 // termination" holds by construction and the tests check only the event bookkeeping:
 // candidate bounds (perfect splits), the cost function, the sweep over sorted events, the
-// classification of triangles, and the encoding of nodes into a subtree.
+// classification of triangles, and the encoding of nodes into a subtree. The binned builder
+// (build_binned.cpp) costs its candidates with the same function (consider_split).
 #pragma once
 
 #include <kdray/kdtree.h>

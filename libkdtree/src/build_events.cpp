@@ -3,8 +3,6 @@
 // thread count.
 #include "build_events.h"
 
-#include <kdray/error.h>
-
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>

@@ -66,19 +66,19 @@ std::string encode_settings(const BuildSettings& settings) {
 BuildSettings decode_settings(const std::string& bytes, const std::string& path) {
   BuildSettings settings;
   settings.binned_above = 0;
+  bool binned = false;
   try {
     std::istringstream stream(bytes);
     cereal::PortableBinaryInputArchive archive(stream);
     archive(settings.traversal_cost, settings.intersection_cost, settings.empty_bonus, settings.max_depth,
             settings.perfect_splits);
-    if (stream.peek() != std::char_traits<char>::eof()) {
-      archive(settings.binned_above, settings.bins);
-      // The exact sweep is written without the two fields: one tree, one encoding, one key.
-      if (settings.binned_above == 0) throw Error(path, "damaged parameters section");
-    }
+    binned = stream.peek() != std::char_traits<char>::eof();
+    if (binned) archive(settings.binned_above, settings.bins);
   } catch (const std::exception&) {
     throw Error(path, "damaged parameters section");
   }
+  // The exact sweep is written without the two fields: one tree, one encoding, one key.
+  if (binned && settings.binned_above == 0) throw Error(path, "damaged parameters section");
   return settings;
 }
 

@@ -2,6 +2,8 @@
 
 #include <kdray/error.h>
 
+#include <tbb/parallel_for.h>
+
 #include <string>
 
 #include <algorithm>
@@ -169,16 +171,8 @@ CostModel cost_model_of(const BuildSettings& settings) {
 
 void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, uint64_t triangles,
                 const CostModel& cost, SplitChoice& best) {
-  // Half the surface area of a child below position p is cross + (p - lo) * girth: the two
-  // faces across the axis plus the four along it.
-  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  const double extent_u = static_cast<double>(voxel.max[u]) - voxel.min[u];
-  const double extent_v = static_cast<double>(voxel.max[v]) - voxel.min[v];
-  const double cross = extent_u * extent_v, girth = extent_u + extent_v;
-  const double lo = voxel.min[axis], hi = voxel.max[axis];
-  const double half_area = cross + (hi - lo) * girth;
-  if (!(half_area > 0.0)) return;  // a voxel without area: no split can pay
-  const double inverse_half_area = 1.0 / half_area;
+  const SplitAreas areas(voxel, axis);
+  if (!areas.has_area()) return;
   uint64_t n_left = 0, n_right = triangles;
   // A local copy: `best` might alias the events, which would force reloads.
   SplitChoice best_here = best;
@@ -197,24 +191,7 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
       ++i;
     } while (i < count && events[i].position == position);
     n_right -= ending + planar;
-    // A child that is the whole voxel must give exactly 1 (the empty bonus depends on it).
-    const double p_left = position == hi ? 1.0 : (cross + (position - lo) * girth) * inverse_half_area;
-    const double p_right = position == lo ? 1.0 : (cross + (hi - position) * girth) * inverse_half_area;
-    double split_cost;
-    bool planar_left;
-    if (planar == 0) {
-      // Both sides give the same number; comparing it with itself keeps what two calls give
-      // (true unless it is NaN).
-      split_cost = cost.split_cost(p_left, p_right, n_left, n_right);
-      planar_left = split_cost <= split_cost;
-    } else {
-      const double planar_left_cost = cost.split_cost(p_left, p_right, n_left + planar, n_right);
-      const double planar_right_cost = cost.split_cost(p_left, p_right, n_left, n_right + planar);
-      planar_left = planar_left_cost <= planar_right_cost;
-      split_cost = planar_left ? planar_left_cost : planar_right_cost;
-    }
-    if (best_here.axis < 0 || split_cost < best_here.cost)
-      best_here = SplitChoice{split_cost, axis, position, planar_left};
+    consider_split(cost, areas, axis, position, n_left, n_right, planar, best_here);
     n_left += starting + planar;
   }
   best = best_here;
@@ -286,28 +263,67 @@ void validate_settings(const BuildSettings& settings) {
     throw Error("", "empty bonus must be in (0, 1]");
   if (settings.max_depth > BuildSettings::kMaxDepthLimit)
     throw Error("", "max depth must be at most " + std::to_string(BuildSettings::kMaxDepthLimit));
+  if (settings.binned_above != 0 && (settings.bins < 2 || settings.bins > BuildSettings::kMaxBins))
+    throw Error("", "bins must be from 2 to " + std::to_string(BuildSettings::kMaxBins));
 }
 
-// The root of both builders: the finite triangles, their bounds and the root voxel.
+// The root of both builders: the finite triangles, their bounds and the root voxel, in
+// parallel over fixed blocks. The blocks' voxels are combined in block order, which keeps the
+// first of equal minima and maxima (-0 and +0) as a sequential pass would.
 RootWork prepare_root(const Scene& scene) {
+  constexpr size_t kBlockTriangles = 16384;
   RootWork root;
   const size_t count = scene.triangle_count();
   if (count > kMaxLocalTriangles) throw Error("", "too many triangles for a k-d tree (at most 2^30 - 1)");
-  Box3 everything{{-INFINITY, -INFINITY, -INFINITY}, {INFINITY, INFINITY, INFINITY}};
+  const Box3 everything{{-INFINITY, -INFINITY, -INFINITY}, {INFINITY, INFINITY, INFINITY}};
+  const size_t blocks = (count + kBlockTriangles - 1) / kBlockTriangles;
+  root.triangles.resize(count);
+  root.bounds.resize(count);
+  std::vector<uint8_t> finite(count);
+  std::vector<Box3> block_voxels(blocks);
+  std::vector<size_t> block_finite(blocks);
+  tbb::parallel_for(size_t{0}, blocks, [&](size_t block) {
+    Box3 voxel{};
+    size_t found = 0;
+    for (size_t t = block * kBlockTriangles; t < std::min(count, (block + 1) * kBlockTriangles); ++t) {
+      finite[t] = finite_triangle(scene, t);
+      if (!finite[t]) continue;
+      Box3& bounds = root.bounds[t];
+      triangle_bounds_in_voxel(scene, static_cast<uint32_t>(t), everything, false, bounds);
+      root.triangles[t] = static_cast<uint32_t>(t);
+      for (int k = 0; k < 3; ++k) {
+        voxel.min[k] = found == 0 ? bounds.min[k] : std::min(voxel.min[k], bounds.min[k]);
+        voxel.max[k] = found == 0 ? bounds.max[k] : std::max(voxel.max[k], bounds.max[k]);
+      }
+      ++found;
+    }
+    block_voxels[block] = voxel;
+    block_finite[block] = found;
+  });
   bool first = true;
-  for (size_t t = 0; t < count; ++t) {
-    if (!finite_triangle(scene, t)) continue;
-    Box3 bounds;
-    triangle_bounds_in_voxel(scene, static_cast<uint32_t>(t), everything, false, bounds);
-    root.triangles.push_back(static_cast<uint32_t>(t));
-    root.bounds.push_back(bounds);
+  for (size_t block = 0; block < blocks; ++block) {
+    if (block_finite[block] == 0) continue;
+    const Box3& voxel = block_voxels[block];
     for (int k = 0; k < 3; ++k) {
-      root.voxel.min[k] = first ? bounds.min[k] : std::min(root.voxel.min[k], bounds.min[k]);
-      root.voxel.max[k] = first ? bounds.max[k] : std::max(root.voxel.max[k], bounds.max[k]);
+      root.voxel.min[k] = first ? voxel.min[k] : std::min(root.voxel.min[k], voxel.min[k]);
+      root.voxel.max[k] = first ? voxel.max[k] : std::max(root.voxel.max[k], voxel.max[k]);
     }
     first = false;
   }
   if (first) root.voxel = Box3{{0, 0, 0}, {0, 0, 0}};
+  // Triangles with a non-finite corner are left out, keeping the others in index order.
+  size_t kept = 0;
+  for (size_t found : block_finite) kept += found;
+  if (kept == count) return root;
+  kept = 0;
+  for (size_t t = 0; t < count; ++t)
+    if (finite[t]) {
+      root.triangles[kept] = root.triangles[t];
+      root.bounds[kept] = root.bounds[t];
+      ++kept;
+    }
+  root.triangles.resize(kept);
+  root.bounds.resize(kept);
   return root;
 }
 

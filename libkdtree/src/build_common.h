@@ -2,7 +2,8 @@
 // O(N log^2 N) reference builder in tests/kdtree share, so that "same candidates, cost and
 // termination" holds by construction and the tests check only the event bookkeeping:
 // candidate bounds (perfect splits), the cost function, the sweep over sorted events, the
-// classification of triangles, and the encoding of nodes into a subtree.
+// classification of triangles, and the encoding of nodes into a subtree. The binned builder
+// (build_binned.cpp) costs its candidates with the same function (consider_split).
 #pragma once
 
 #include <kdray/kdtree.h>
@@ -128,6 +129,57 @@ struct SplitChoice {
   float position = 0;
   bool planar_left = false;
 };
+
+// Surface areas of the two children of a voxel split on one axis, as fractions of the voxel's:
+// half the area of a child below position p is cross + (p - lo) * girth, the two faces across
+// the axis plus the four along it.
+struct SplitAreas {
+  SplitAreas(const Box3& voxel, int axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const double extent_u = static_cast<double>(voxel.max[u]) - voxel.min[u];
+    const double extent_v = static_cast<double>(voxel.max[v]) - voxel.min[v];
+    cross = extent_u * extent_v;
+    girth = extent_u + extent_v;
+    lo = voxel.min[axis];
+    hi = voxel.max[axis];
+    half_area = cross + (hi - lo) * girth;
+    inverse_half_area = 1.0 / half_area;
+  }
+  // False for a voxel without area, where no split can pay.
+  bool has_area() const { return half_area > 0.0; }
+  // A child that is the whole voxel gives exactly 1 (the empty bonus depends on it).
+  double below(float position) const {
+    return position == hi ? 1.0 : (cross + (position - lo) * girth) * inverse_half_area;
+  }
+  double above(float position) const {
+    return position == lo ? 1.0 : (cross + (hi - position) * girth) * inverse_half_area;
+  }
+
+  double cross, girth, lo, hi, half_area, inverse_half_area;
+};
+
+// Costs the split at `position` of `axis`, with `n_left` triangles only below or across it,
+// `n_right` only above or across it and `planar` lying in it (tried on both sides), and keeps
+// it in `best` when it is strictly cheaper (ties keep the earlier candidate).
+inline void consider_split(const CostModel& cost, const SplitAreas& areas, int axis, float position,
+                           uint64_t n_left, uint64_t n_right, uint64_t planar, SplitChoice& best) {
+  const double p_left = areas.below(position);
+  const double p_right = areas.above(position);
+  double split_cost;
+  bool planar_left;
+  if (planar == 0) {
+    // Both sides give the same number; comparing it with itself keeps what two calls give
+    // (true unless it is NaN).
+    split_cost = cost.split_cost(p_left, p_right, n_left, n_right);
+    planar_left = split_cost <= split_cost;
+  } else {
+    const double planar_left_cost = cost.split_cost(p_left, p_right, n_left + planar, n_right);
+    const double planar_right_cost = cost.split_cost(p_left, p_right, n_left, n_right + planar);
+    planar_left = planar_left_cost <= planar_right_cost;
+    split_cost = planar_left ? planar_left_cost : planar_right_cost;
+  }
+  if (best.axis < 0 || split_cost < best.cost) best = SplitChoice{split_cost, axis, position, planar_left};
+}
 
 // Sweeps the sorted events of one axis of a voxel holding `triangles` triangles and keeps the
 // cheapest split in `best` (a strictly lower cost replaces it: ties keep the earlier axis and

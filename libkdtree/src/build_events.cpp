@@ -1,13 +1,7 @@
-// The O(N log N) SAH builder (Wald & Havran 2006): events are sorted once per axis at the root;
-// each split divides the sorted lists in one pass and merges in the few re-clipped events of
-// straddling triangles, so no node re-sorts. Subtrees above a size threshold are built in
-// parallel into their own arrays and concatenated in a fixed order, so the bytes do not
-// depend on the thread count.
-#include <kdray/error.h>
-#include <kdray/kdtree.h>
-#include <kdray/threads.h>
-
-#include "build_common.h"
+// The exact event builder (build_events.h). Subtrees above a size threshold are built in
+// parallel into their own pieces, joined in a fixed order, so the bytes do not depend on the
+// thread count.
+#include "build_events.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
@@ -16,75 +10,15 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
-#include <chrono>
-#include <cmath>
 #include <cstring>
 #include <memory>
-#include <mutex>
+#include <utility>
 
-namespace kdray {
-
-uint32_t BuildSettings::resolved_max_depth(uint64_t triangles) const {
-  if (max_depth != 0) return max_depth;
-  const double automatic = 8.0 + 1.3 * std::log2(static_cast<double>(std::max<uint64_t>(triangles, 1)));
-  return std::min(kAutoMaxDepthCap, static_cast<uint32_t>(automatic));
-}
-
-namespace detail {
+namespace kdray::detail {
 namespace {
 
 // Nodes with at least this many triangles build their two children in parallel.
 constexpr size_t kParallelTriangles = 4096;
-
-struct NodeWork {
-  Box3 voxel;
-  uint32_t depth = 0;
-  std::vector<uint32_t> triangles;  // scene triangle per local index
-  std::vector<Box3> bounds;         // per local index: the triangle's bounds in this voxel
-  EventArray events[3];             // sorted
-};
-
-// A subtree of the parallel levels: an inner node with its two pieces, or (axis -1) a subtree
-// built by one thread. Pieces are joined into one array once, at the end (flatten), rather
-// than copied up level by level.
-struct Piece {
-  int axis = -1;
-  float position = 0;
-  std::unique_ptr<Piece> below, above;
-  Subtree serial;
-};
-
-void count_sizes(const Piece& piece, size_t& nodes, size_t& references) {
-  if (piece.axis < 0) {
-    nodes += piece.serial.nodes.size();
-    references += piece.serial.leaf_triangles.size();
-    return;
-  }
-  ++nodes;
-  count_sizes(*piece.below, nodes, references);
-  count_sizes(*piece.above, nodes, references);
-}
-
-void append_piece(const Piece& piece, Subtree& out) {
-  if (piece.axis < 0) {
-    out.append(piece.serial);
-    return;
-  }
-  out.add_inner(piece.axis, piece.position, [&] { append_piece(*piece.below, out); },
-                [&] { append_piece(*piece.above, out); });
-}
-
-Subtree flatten(Piece&& root) {
-  if (root.axis < 0) return std::move(root.serial);
-  size_t nodes = 0, references = 0;
-  count_sizes(root, nodes, references);
-  Subtree out;
-  out.nodes.reserve(nodes);
-  out.leaf_triangles.reserve(references);
-  append_piece(root, out);
-  return out;
-}
 
 // Events as 64-bit integers in the order of operator<: the position's bits made monotone in
 // the high half, the order key in the low half. -0 and +0 are equal positions but different
@@ -134,7 +68,7 @@ void sort_events(EventArray& events) {
       [&] { std::sort(events.begin(), events.end()); });
 }
 
-// The events of the root, in parallel.
+// The events of a large node, in parallel.
 void parallel_sort_events(EventArray& events) {
   KeyArray keys;
   sort_events(
@@ -144,14 +78,13 @@ void parallel_sort_events(EventArray& events) {
 
 class EventBuilder {
  public:
-  EventBuilder(const Scene& scene, const BuildSettings& settings, const BuildControl& control,
-               uint64_t triangle_count)
-      : scene_(scene),
-        settings_(settings),
-        cost_(cost_model_of(settings)),
-        max_depth_(settings.resolved_max_depth(triangle_count)),
-        small_parameters_{cost_, max_depth_, settings.perfect_splits},
-        control_(control) {}
+  explicit EventBuilder(BuildContext& context)
+      : scene_(context.scene),
+        perfect_splits_(context.settings.perfect_splits),
+        cost_(context.cost),
+        max_depth_(context.max_depth),
+        small_parameters_(context.small_parameters),
+        finished_(context.finished) {}
 
   // Builds the subtree of `work` into `out`. Nodes with many triangles build their children
   // in parallel; below that size a thread builds the whole subtree itself (build_serial).
@@ -159,13 +92,13 @@ class EventBuilder {
     const size_t n = work.triangles.size();
     if (n < kParallelTriangles) {
       build_serial(work, out.serial);
-      report_finished(work.depth);
+      finished_.report(work.depth);
       return;
     }
     const SplitChoice split = choose_split(work);
     if (split.axis < 0) {
       out.serial.add_leaf(work.triangles.data(), n);
-      report_finished(work.depth);
+      finished_.report(work.depth);
       return;
     }
     out.axis = split.axis;
@@ -244,7 +177,7 @@ class EventBuilder {
     }
     // Bounds are kept per triangle only without perfect splits: with them, a straddler's
     // child bounds come from clipping the triangle itself.
-    const bool keep_bounds = !settings_.perfect_splits;
+    const bool keep_bounds = !perfect_splits_;
 
     // Local index of each parent triangle in each child: monotone, so the order of the kept
     // events survives. Straddlers get fresh bounds and events in each child they really reach.
@@ -280,9 +213,9 @@ class EventBuilder {
         place(right, right_index, nullptr, i, triangle, parent_bounds);
       } else {
         Box3 bounds;
-        if (child_bounds(scene_, triangle, parent_bounds, left.voxel, settings_.perfect_splits, bounds))
+        if (child_bounds(scene_, triangle, parent_bounds, left.voxel, perfect_splits_, bounds))
           place(left, left_index, fresh_left, i, triangle, bounds);
-        if (child_bounds(scene_, triangle, parent_bounds, right.voxel, settings_.perfect_splits, bounds))
+        if (child_bounds(scene_, triangle, parent_bounds, right.voxel, perfect_splits_, bounds))
           place(right, right_index, fresh_right, i, triangle, bounds);
       }
     }
@@ -353,71 +286,41 @@ class EventBuilder {
     merge_events(kept.data(), kept.data() + kept.size(), fresh.data(), fresh.data() + fresh.size(), out.data());
   }
 
-  // Progress is the share of the tree's "mass" in finished subtrees, a subtree at depth d
-  // weighing 2^-d: for a binary tree these weights sum to exactly 1 (Kraft), so it ends at
-  // 100%. Only subtrees of the parallel levels report, which keeps the shared counter cold.
-  void report_finished(uint32_t depth) {
-    if (!control_.progress) return;
-    const uint64_t weight = uint64_t{1} << (63 - std::min<uint32_t>(depth, 63));
-    const uint64_t before = finished_mass_.fetch_add(weight);
-    constexpr uint64_t kPercent = (uint64_t{1} << 63) / 100;
-    if ((before + weight) / kPercent != before / kPercent) {
-      // Reading the total under the lock keeps the reported fractions increasing.
-      std::lock_guard<std::mutex> lock(progress_mutex_);
-      control_.progress(std::min(1.0, std::ldexp(static_cast<double>(finished_mass_.load()), -63)));
-    }
-  }
-
   const Scene& scene_;
-  const BuildSettings& settings_;
-  const CostModel cost_;
+  const bool perfect_splits_;
+  const CostModel& cost_;
   const uint32_t max_depth_;
-  const SmallBuildParameters small_parameters_;
-  const BuildControl& control_;
-  std::atomic<uint64_t> finished_mass_{0};
-  std::mutex progress_mutex_;
+  const SmallBuildParameters& small_parameters_;
+  FinishedSubtrees& finished_;
 };
 
 }  // namespace
 
-}  // namespace detail
-
-KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const BuildControl& control) {
-  detail::validate_settings(settings);
-  BuildTimings timings;
-  auto lap = [last = std::chrono::steady_clock::now()](double& phase) mutable {
-    const auto now = std::chrono::steady_clock::now();
-    phase = std::chrono::duration<double>(now - last).count();
-    last = now;
+NodeWork node_with_events(const Box3& voxel, uint32_t depth, std::vector<uint32_t>&& triangles,
+                          std::vector<Box3> bounds, bool perfect_splits) {
+  NodeWork work;
+  work.voxel = voxel;
+  work.depth = depth;
+  work.triangles = std::move(triangles);
+  auto create = [&](int axis) {
+    EventArray& events = work.events[axis];
+    events.reserve(2 * work.triangles.size());
+    for (size_t i = 0; i < work.triangles.size(); ++i)
+      append_events(events, bounds[i], axis, static_cast<uint32_t>(i));
+    if (work.triangles.size() >= kParallelTriangles)
+      parallel_sort_events(events);
+    else
+      sort_events(events);
   };
-  detail::RootWork root = detail::prepare_root(scene);
-  lap(timings.prepare);
-  detail::Subtree built;
-  run_with_threads(control.threads, [&] {
-    detail::NodeWork work;
-    work.voxel = root.voxel;
-    work.triangles = std::move(root.triangles);
-    work.bounds = std::move(root.bounds);
-    tbb::parallel_for(0, 3, [&](int axis) {
-      detail::EventArray& events = work.events[axis];
-      events.reserve(2 * work.triangles.size());
-      for (size_t i = 0; i < work.triangles.size(); ++i)
-        detail::append_events(events, work.bounds[i], axis, static_cast<uint32_t>(i));
-      detail::parallel_sort_events(events);
-    });
-    lap(timings.events);
-    detail::EventBuilder builder(scene, settings, control, work.triangles.size());
-    detail::Piece root_piece;
-    builder.build(work, root_piece);
-    lap(timings.subdivide);
-    built = detail::flatten(std::move(root_piece));
-    lap(timings.assemble);
-  });
-  if (control.progress) control.progress(1.0);
-  KdTree tree = detail::finish_tree(scene, settings, root.voxel, std::move(built));
-  lap(timings.statistics);
-  if (control.timings) *control.timings = timings;
-  return tree;
+  if (work.triangles.size() >= kParallelTriangles)
+    tbb::parallel_for(0, 3, create);
+  else
+    for (int axis = 0; axis < 3; ++axis) create(axis);
+  // With perfect splits the events say all that is needed of the bounds.
+  if (!perfect_splits) work.bounds = std::move(bounds);
+  return work;
 }
 
-}  // namespace kdray
+void build_exact_subtree(BuildContext& context, NodeWork& work, Piece& out) { EventBuilder(context).build(work, out); }
+
+}  // namespace kdray::detail

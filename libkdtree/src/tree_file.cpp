@@ -23,12 +23,6 @@
 namespace kdray {
 
 template <class Archive>
-void serialize(Archive& archive, BuildSettings& settings) {
-  archive(settings.traversal_cost, settings.intersection_cost, settings.empty_bonus, settings.max_depth,
-          settings.perfect_splits);
-}
-
-template <class Archive>
 void serialize(Archive& archive, TreeStats& stats) {
   archive(stats.triangles, stats.inner_nodes, stats.leaves, stats.empty_leaves, stats.leaf_references,
           stats.max_depth, stats.mean_leaf_depth, stats.mean_triangles_per_leaf, stats.references_per_triangle,
@@ -58,6 +52,39 @@ T from_portable_binary(const std::string& bytes, const std::string& path, const 
     throw Error(path, std::string("damaged ") + what + " section");
   }
   return value;
+}
+
+// Section 3: the five fields every tree has, then binned_above and bins for a binned tree
+// only. A tree built by the exact sweep everywhere keeps the section, and so the key, it had
+// before binning existed; a reader that knows only the five fields still reads a binned tree.
+std::string encode_settings(const BuildSettings& settings) {
+  std::ostringstream stream;
+  {
+    cereal::PortableBinaryOutputArchive archive(stream);
+    archive(settings.traversal_cost, settings.intersection_cost, settings.empty_bonus, settings.max_depth,
+            settings.perfect_splits);
+    if (settings.binned_above != 0) archive(settings.binned_above, settings.bins);
+  }
+  return stream.str();
+}
+
+BuildSettings decode_settings(const std::string& bytes, const std::string& path) {
+  BuildSettings settings;
+  settings.binned_above = 0;
+  bool binned = false;
+  try {
+    std::istringstream stream(bytes);
+    cereal::PortableBinaryInputArchive archive(stream);
+    archive(settings.traversal_cost, settings.intersection_cost, settings.empty_bonus, settings.max_depth,
+            settings.perfect_splits);
+    binned = stream.peek() != std::char_traits<char>::eof();
+    if (binned) archive(settings.binned_above, settings.bins);
+  } catch (const std::exception&) {
+    throw Error(path, "damaged parameters section");
+  }
+  // The exact sweep is written without the two fields: one tree, one encoding, one key.
+  if (binned && settings.binned_above == 0) throw Error(path, "damaged parameters section");
+  return settings;
 }
 
 // Checks that the nodes [begin, end) form one subtree whose root is `begin`, at `depth`, in the
@@ -160,7 +187,7 @@ uint64_t key_of(uint64_t geometry_hash, const std::string& encoded_settings) {
 }  // namespace
 
 void write_tree(const std::string& path, const KdTree& tree) {
-  const std::string parameters = to_portable_binary(tree.settings);
+  const std::string parameters = encode_settings(tree.settings);
   const std::string statistics = to_portable_binary(tree.stats);
   const float bounds[6] = {tree.bounds.min.x, tree.bounds.min.y, tree.bounds.min.z,
                            tree.bounds.max.x, tree.bounds.max.y, tree.bounds.max.z};
@@ -178,7 +205,7 @@ void write_tree(const std::string& path, const KdTree& tree) {
 }
 
 uint64_t tree_key(uint64_t geometry_hash, const BuildSettings& settings) {
-  return key_of(geometry_hash, to_portable_binary(settings));
+  return key_of(geometry_hash, encode_settings(settings));
 }
 
 KdTree read_tree(const std::string& path) {
@@ -232,7 +259,7 @@ KdTree read_tree(const std::string& path) {
   } else {
     tree.v1_scene_hash = contents.header.content_hash;
   }
-  tree.settings = from_portable_binary<BuildSettings>(parameters, path, "parameters");
+  tree.settings = decode_settings(parameters, path);
   tree.stats = from_portable_binary<TreeStats>(statistics, path, "statistics");
   tree.bounds = Bounds{{bounds[0], bounds[1], bounds[2]}, {bounds[3], bounds[4], bounds[5]}};
   validate_structure(tree, path);

@@ -1,51 +1,140 @@
+// compute_tree_stats: the tree's structure and its SAH cost, walked in parallel over the
+// subtrees below its top levels; the subtrees' sums are combined in a fixed order, so the
+// figures do not depend on the thread count.
 #include <kdray/kdtree.h>
 
 #include "build_common.h"
+
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <vector>
 
 namespace kdray {
+namespace {
+
+// Levels walked before the subtrees below them are walked in parallel (up to 2^levels).
+constexpr int kSerialLevels = 8;
+
+struct Pending {
+  uint32_t node;
+  uint32_t depth;
+  double weight;  // the product of the lambdas of the inner nodes above (see Walk)
+  detail::Box3 voxel;
+};
+
+struct Totals {
+  uint64_t inner_nodes = 0, leaves = 0, empty_leaves = 0, depth_sum = 0;
+  uint32_t max_depth = 0;
+  double sah_cost = 0;
+
+  void add(const Totals& other) {
+    inner_nodes += other.inner_nodes;
+    leaves += other.leaves;
+    empty_leaves += other.empty_leaves;
+    depth_sum += other.depth_sum;
+    max_depth = std::max(max_depth, other.max_depth);
+    sah_cost += other.sah_cost;
+  }
+};
+
+// The SAH cost is the cost the builder minimises, C = lambda * (K_T + P_L C_L + P_R C_R) for an
+// inner node (lambda: the empty bonus when a child is an empty leaf and neither child is the
+// whole voxel, else 1) and C = K_I N for a leaf, summed node by node: each node's term is
+// weighted by its relative area and by the lambdas of the inner nodes above it.
+class Walk {
+ public:
+  explicit Walk(const KdTree& tree)
+      : tree_(tree), cost_(detail::cost_model_of(tree.settings)), root_area_(detail::surface_area(root())) {}
+
+  detail::Box3 root() const { return detail::box_of(tree_.bounds); }
+
+  // Adds the node's terms to `totals`; for an inner node, returns true and its children.
+  bool visit(const Pending& item, Totals& totals, Pending& below, Pending& above) const {
+    const KdNode node = tree_.nodes[item.node];
+    if (kd_node_is_leaf(node)) {
+      ++totals.leaves;
+      const uint32_t count = kd_leaf_count(node);
+      totals.empty_leaves += count == 0;
+      totals.depth_sum += item.depth;
+      totals.max_depth = std::max(totals.max_depth, item.depth);
+      totals.sah_cost += item.weight * cost_.leaf_cost(count) * relative_area(item.voxel);
+      return false;
+    }
+    ++totals.inner_nodes;
+    const int axis = static_cast<int>(kd_node_axis(node));
+    const float split = kd_node_split(node);
+    const detail::SplitAreas areas(item.voxel, axis);
+    const bool whole_voxel_child = areas.below(split) == 1.0 || areas.above(split) == 1.0;
+    const bool empty_child = is_empty_leaf(item.node + 1) || is_empty_leaf(kd_node_far_child(node));
+    const double weight = item.weight * (empty_child && !whole_voxel_child ? cost_.empty_bonus : 1.0);
+    totals.sah_cost += weight * cost_.traversal * relative_area(item.voxel);
+    below = {item.node + 1, item.depth + 1, weight, detail::below_plane(item.voxel, axis, split)};
+    above = {kd_node_far_child(node), item.depth + 1, weight, detail::above_plane(item.voxel, axis, split)};
+    return true;
+  }
+
+  // The totals of the subtree of `top`, depth first.
+  Totals subtree(const Pending& top) const {
+    Totals totals;
+    std::vector<Pending> stack{top};
+    Pending below, above;
+    while (!stack.empty()) {
+      const Pending item = stack.back();
+      stack.pop_back();
+      if (!visit(item, totals, below, above)) continue;
+      stack.push_back(above);
+      stack.push_back(below);
+    }
+    return totals;
+  }
+
+ private:
+  // Without area (an empty or degenerate scene) every node counts as the root's size.
+  double relative_area(const detail::Box3& box) const {
+    return root_area_ > 0.0 ? detail::surface_area(box) / root_area_ : 1.0;
+  }
+  bool is_empty_leaf(uint32_t index) const {
+    return kd_node_is_leaf(tree_.nodes[index]) && kd_leaf_count(tree_.nodes[index]) == 0;
+  }
+
+  const KdTree& tree_;
+  const detail::CostModel cost_;
+  const double root_area_;
+};
+
+}  // namespace
 
 TreeStats compute_tree_stats(const KdTree& tree, uint64_t scene_triangles) {
   TreeStats stats;
   stats.triangles = scene_triangles;
   stats.leaf_references = tree.leaf_triangles.size();
   if (tree.nodes.empty()) return stats;
-  const detail::Box3 root = detail::box_of(tree.bounds);
-  const double root_area = detail::surface_area(root);
-  // Without area (an empty or degenerate scene) every node counts as the root's size.
-  auto relative_area = [&](const detail::Box3& box) {
-    return root_area > 0.0 ? detail::surface_area(box) / root_area : 1.0;
-  };
-  struct Pending {
-    uint32_t node;
-    uint32_t depth;
-    detail::Box3 voxel;
-  };
-  std::vector<Pending> stack{{0, 0, root}};
-  uint64_t depth_sum = 0, non_empty_leaves = 0;
-  while (!stack.empty()) {
-    const Pending item = stack.back();
-    stack.pop_back();
-    const KdNode node = tree.nodes[item.node];
-    if (kd_node_is_leaf(node)) {
-      ++stats.leaves;
-      const uint32_t count = kd_leaf_count(node);
-      if (count == 0) ++stats.empty_leaves; else ++non_empty_leaves;
-      depth_sum += item.depth;
-      stats.max_depth = std::max(stats.max_depth, item.depth);
-      stats.sah_cost += tree.settings.intersection_cost * count * relative_area(item.voxel);
-      continue;
+  const Walk walk(tree);
+  // The top levels, level by level, leave the subtrees below them in depth-first order.
+  Totals totals;
+  std::vector<Pending> subtrees{{0, 0, 1.0, walk.root()}};
+  for (int level = 0; level < kSerialLevels; ++level) {
+    std::vector<Pending> next;
+    for (const Pending& item : subtrees) {
+      Pending below, above;
+      if (!walk.visit(item, totals, below, above)) continue;
+      next.push_back(below);
+      next.push_back(above);
     }
-    ++stats.inner_nodes;
-    stats.sah_cost += tree.settings.traversal_cost * relative_area(item.voxel);
-    const int axis = static_cast<int>(kd_node_axis(node));
-    const float split = kd_node_split(node);
-    stack.push_back({kd_node_far_child(node), item.depth + 1, detail::above_plane(item.voxel, axis, split)});
-    stack.push_back({item.node + 1, item.depth + 1, detail::below_plane(item.voxel, axis, split)});
+    subtrees.swap(next);
   }
-  stats.mean_leaf_depth = static_cast<double>(depth_sum) / static_cast<double>(stats.leaves);
+  std::vector<Totals> below(subtrees.size());
+  tbb::parallel_for(size_t{0}, subtrees.size(), [&](size_t i) { below[i] = walk.subtree(subtrees[i]); });
+  for (const Totals& subtree : below) totals.add(subtree);
+
+  stats.inner_nodes = totals.inner_nodes;
+  stats.leaves = totals.leaves;
+  stats.empty_leaves = totals.empty_leaves;
+  stats.max_depth = totals.max_depth;
+  stats.sah_cost = totals.sah_cost;
+  const uint64_t non_empty_leaves = stats.leaves - stats.empty_leaves;
+  stats.mean_leaf_depth = static_cast<double>(totals.depth_sum) / static_cast<double>(stats.leaves);
   stats.mean_triangles_per_leaf =
       non_empty_leaves ? static_cast<double>(stats.leaf_references) / static_cast<double>(non_empty_leaves) : 0.0;
   stats.references_per_triangle =

@@ -1,4 +1,5 @@
 // The SAH builder: degenerate scenes, structure, quality, the reference builder and threads.
+#include "build_common.h"
 #include "reference_builder.h"
 #include "test_scenes.h"
 
@@ -10,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -19,6 +21,17 @@ namespace {
 bool same_tree(const KdTree& a, const KdTree& b) {
   return a.nodes.size() == b.nodes.size() && a.leaf_triangles == b.leaf_triangles &&
          std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(KdNode)) == 0;
+}
+
+// FNV-1a 64 over the node and leaf-triangle arrays: what the tree's bytes are, in one number.
+uint64_t tree_fingerprint(const KdTree& tree) {
+  uint64_t hash = 0xcbf29ce484222325ull;
+  auto feed = [&](const void* data, size_t size) {
+    for (size_t i = 0; i < size; ++i) hash = (hash ^ static_cast<const unsigned char*>(data)[i]) * 0x100000001b3ull;
+  };
+  feed(tree.nodes.data(), tree.nodes.size() * sizeof(KdNode));
+  feed(tree.leaf_triangles.data(), tree.leaf_triangles.size() * sizeof(uint32_t));
+  return hash;
 }
 
 // Every triangle with finite corners is in some leaf.
@@ -159,7 +172,9 @@ TEST(KdBuild, ReferenceBuilderAgreesOnTheDragon) {
   std::string path;
   KDRAY_CORPUS_FILE(path, "dragon/dragon_vcg_23k.ply");
   const Scene scene = test::mesh_file(path);
-  EXPECT_TRUE(same_tree(build_kdtree(scene, BuildSettings{}), test::build_kdtree_by_resorting(scene, BuildSettings{})));
+  BuildSettings exact;
+  exact.binned_above = 0;
+  EXPECT_TRUE(same_tree(build_kdtree(scene, exact), test::build_kdtree_by_resorting(scene, exact)));
 }
 
 // More threads than cores (they are taken since kdray/threads.h) let a waiting thread pick up other
@@ -172,6 +187,120 @@ TEST(KdBuild, ThreadCountDoesNotChangeTheTree) {
     const KdTree many = build_kdtree(scene, BuildSettings{}, BuildControl{threads, {}});
     EXPECT_TRUE(same_tree(one, many)) << threads << " threads";
   }
+}
+
+// Settings that bin nodes of more than `above` triangles, so that small test scenes have
+// binned levels.
+BuildSettings binned_above(uint32_t above, uint32_t bins = BuildSettings::kDefaultBins) {
+  BuildSettings settings;
+  settings.binned_above = above;
+  settings.bins = bins;
+  return settings;
+}
+
+// The builder's cost, C = lambda (K_T + P_L C_L + P_R C_R) and K_I N, by recursion.
+double recursive_cost(const KdTree& tree, uint32_t index, const detail::Box3& voxel, double root_area) {
+  const KdNode node = tree.nodes[index];
+  const double area = detail::surface_area(voxel) / root_area;
+  if (kd_node_is_leaf(node)) return tree.settings.intersection_cost * static_cast<double>(kd_leaf_count(node)) * area;
+  const int axis = static_cast<int>(kd_node_axis(node));
+  const float split = kd_node_split(node);
+  auto empty_leaf = [&](uint32_t child) {
+    return kd_node_is_leaf(tree.nodes[child]) && kd_leaf_count(tree.nodes[child]) == 0;
+  };
+  const bool bonus = (empty_leaf(index + 1) || empty_leaf(kd_node_far_child(node))) && split != voxel.min[axis] &&
+                     split != voxel.max[axis];
+  const double below = recursive_cost(tree, index + 1, detail::below_plane(voxel, axis, split), root_area);
+  const double above = recursive_cost(tree, kd_node_far_child(node), detail::above_plane(voxel, axis, split), root_area);
+  return (bonus ? tree.settings.empty_bonus : 1.0) * (tree.settings.traversal_cost * area + below + above);
+}
+
+TEST(KdBuild, SahCostIsTheBuildersCostWithTheEmptyBonus) {
+  const Scene scene = test::icosphere_scene(4, {0, 0, 0}, 1);
+  for (float bonus : {1.0f, 0.8f, 0.5f}) {
+    BuildSettings settings;
+    settings.empty_bonus = bonus;
+    const KdTree tree = build_kdtree(scene, settings);
+    const detail::Box3 root = detail::box_of(tree.bounds);
+    EXPECT_NEAR(tree.stats.sah_cost, recursive_cost(tree, 0, root, detail::surface_area(root)),
+                1e-9 * tree.stats.sah_cost)
+        << "empty bonus " << bonus;
+  }
+  // With a bonus, the empty cuts around the sphere cost less than their full traversal.
+  BuildSettings full;
+  full.empty_bonus = 1.0f;
+  const KdTree tree = build_kdtree(scene, BuildSettings{});
+  KdTree unbonused = tree;
+  unbonused.settings = full;
+  EXPECT_LT(tree.stats.sah_cost, compute_tree_stats(unbonused, scene.triangle_count()).sah_cost);
+}
+
+TEST(KdBuild, BinnedTreeIsTheSameForAnyThreadCount) {
+  for (const BuildSettings& settings : {binned_above(1000), binned_above(300, 16)}) {
+    const Scene scene = test::triangle_soup(25000, 17);
+    const KdTree one = build_kdtree(scene, settings, BuildControl{1, {}});
+    EXPECT_NE(tree_fingerprint(one), tree_fingerprint(build_kdtree(scene, binned_above(0))))
+        << "the binned levels chose other planes than the exact sweep";
+    for (unsigned threads : {2u, 8u, 8u}) {
+      const KdTree many = build_kdtree(scene, settings, BuildControl{threads, {}});
+      EXPECT_TRUE(same_tree(one, many)) << threads << " threads, " << settings.bins << " bins";
+      EXPECT_EQ(one.stats.sah_cost, many.stats.sah_cost);
+    }
+  }
+}
+
+TEST(KdBuild, BinnedTreeIsValidAndCloseToTheExactOne) {
+  std::string path;
+  KDRAY_CORPUS_FILE(path, "dragon/dragon_vcg_23k.ply");
+  const Scene dragon = test::mesh_file(path);
+  BuildSettings no_clipping = binned_above(500);
+  no_clipping.perfect_splits = false;
+  for (const Scene& scene : {dragon, test::coplanar_grid(64), test::box_room()})
+    for (const BuildSettings& settings : {binned_above(500), binned_above(20, 4), no_clipping}) {
+      const KdTree binned = build_kdtree(scene, settings);
+      BuildSettings exact_settings = settings;
+      exact_settings.binned_above = 0;
+      const KdTree exact = build_kdtree(scene, exact_settings);
+      const TreeStats& stats = binned.stats;
+      EXPECT_EQ(stats.inner_nodes + stats.leaves, binned.nodes.size());
+      EXPECT_EQ(stats.leaves, stats.inner_nodes + 1);
+      EXPECT_LE(stats.max_depth, settings.resolved_max_depth(scene.triangle_count()));
+      expect_all_triangles_referenced(scene, binned);
+      for (const KdNode& node : binned.nodes) {
+        if (!kd_node_is_leaf(node)) continue;
+        EXPECT_TRUE(std::is_sorted(binned.leaf_triangles.begin() + kd_leaf_first(node),
+                                   binned.leaf_triangles.begin() + kd_leaf_first(node) + kd_leaf_count(node)));
+      }
+      // Binning costs little at the top of a tree; 4 bins above 20 triangles may cost more.
+      EXPECT_LT(stats.sah_cost, (settings.bins == 4 ? 1.25 : 1.03) * exact.stats.sah_cost)
+          << scene.triangle_count() << " triangles, " << settings.bins << " bins above " << settings.binned_above;
+    }
+}
+
+TEST(KdBuild, BinningIsTheDefaultAboveTheThresholdOnly) {
+  EXPECT_GT(BuildSettings{}.binned_above, 0u);
+  const Scene small = test::triangle_soup(3000, 11);
+  EXPECT_TRUE(same_tree(build_kdtree(small, binned_above(3000)), build_kdtree(small, binned_above(0))))
+      << "a root at the threshold is built by the exact sweep";
+  EXPECT_FALSE(same_tree(build_kdtree(small, binned_above(2999)), build_kdtree(small, binned_above(0))));
+}
+
+TEST(KdBuild, RejectsBinCountsOutOfRange) {
+  const Scene scene = test::triangle_soup(100, 1);
+  EXPECT_THROW(build_kdtree(scene, binned_above(10, 1)), Error);
+  EXPECT_THROW(build_kdtree(scene, binned_above(10, BuildSettings::kMaxBins + 1)), Error);
+  EXPECT_NO_THROW(build_kdtree(scene, binned_above(0, 1))) << "bins do not matter to the exact sweep";
+}
+
+// The exact sweep's trees, pinned to the bytes it built before the binned builder existed.
+TEST(KdBuild, ExactBuilderKeepsItsTrees) {
+  BuildSettings exact;
+  exact.binned_above = 0;
+  EXPECT_EQ(tree_fingerprint(build_kdtree(test::triangle_soup(25000, 17), exact)), 0xa1ed67ad0a783883ull);
+  EXPECT_EQ(tree_fingerprint(build_kdtree(test::icosphere_scene(5, {0.25f, 0, 0}, 1), exact)), 0x8813462f65c7664dull);
+  std::string path;
+  KDRAY_CORPUS_FILE(path, "dragon/dragon_vcg_23k.ply");
+  EXPECT_EQ(tree_fingerprint(build_kdtree(test::mesh_file(path), exact)), 0x4b5f4b325c80f8c7ull);
 }
 
 TEST(KdBuild, ReportsItsPhaseTimes) {

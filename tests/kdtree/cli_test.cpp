@@ -72,6 +72,24 @@ TEST_F(KdCli, KdbuildWritesATreeAndReportsJson) {
   EXPECT_EQ(read_tree(path("room2.kdtree")).settings.traversal_cost, 30.0f);
 }
 
+TEST_F(KdCli, KdbuildExactBuildsWithTheExactSweepEverywhere) {
+  EXPECT_NE(run("kdbuild", "--help").out.find("--exact"), std::string::npos);
+  const ToolRun exact = run("kdbuild", path("room.kdscene") + " " + path("exact.kdtree") + " --exact --json");
+  ASSERT_EQ(exact.exit_code, 0) << exact.err;
+  EXPECT_EQ(nlohmann::json::parse(exact.out).at("build_settings").at("binned_above"), 0);
+  EXPECT_EQ(read_tree(path("exact.kdtree")).settings.binned_above, 0u);
+  const ToolRun binned = run("kdbuild", path("room.kdscene") + " " + path("binned.kdtree") + " --json --binned-above 8");
+  ASSERT_EQ(binned.exit_code, 0) << binned.err;
+  const nlohmann::json report = nlohmann::json::parse(binned.out);
+  EXPECT_EQ(report.at("build_settings").at("binned_above"), 8);
+  EXPECT_EQ(report.at("build_settings").at("bins"), BuildSettings::kDefaultBins);
+  EXPECT_GT(report.at("peak_memory_mib").get<double>(), 0.0);
+  for (const char* phase : {"load", "prepare", "events", "subdivide", "assemble", "statistics", "write"})
+    EXPECT_GE(report.at("phase_seconds").at(phase).get<double>(), 0.0) << phase;
+  EXPECT_EQ(run("kdbuild", path("room.kdscene") + " " + path("t.kdtree") + " --exact --binned-above 8").exit_code, 2);
+  EXPECT_EQ(run("kdbuild", path("room.kdscene") + " " + path("t.kdtree") + " --bins 1").exit_code, 2);
+}
+
 TEST_F(KdCli, KdbuildRejectsBadUsageAndBadInput) {
   EXPECT_EQ(run("kdbuild", "").exit_code, 2);
   EXPECT_EQ(run("kdbuild", path("room.kdscene") + " " + path("t.kdtree") + " --empty-bonus 1.5").exit_code, 2);

@@ -117,6 +117,27 @@ TEST(KdTraverse, MatchesDoublePrecisionBruteForce) {
   }
 }
 
+// A binned tree finds what brute force and the exact sweep's tree find.
+TEST(KdTraverse, BinnedTreesFindTheClosestHits) {
+  std::string path;
+  KDRAY_CORPUS_FILE(path, "dragon/dragon_vcg_23k.ply");
+  for (const Scene& scene : {test::mesh_file(path), test::triangle_soup(5000, 8), test::box_room()}) {
+    BuildSettings binned, exact;
+    binned.binned_above = 100;
+    exact.binned_above = 0;
+    const KdTree tree = build_kdtree(scene, binned);
+    const std::vector<RayRecord> rays = mixed_rays(scene, tree, 4000, 13);
+    expect_same_as_float_brute_force(scene, tree, rays, TraversalStack::Short);
+    std::vector<HitRecord> binned_hits, exact_hits;
+    trace_closest(scene, tree, rays, binned_hits);
+    trace_closest(scene, build_kdtree(scene, exact), rays, exact_hits);
+    size_t differ = 0;
+    for (size_t i = 0; i < rays.size(); ++i)
+      differ += !same_hit_or_tie(binned_hits[i], exact_hits[i]) && !test::is_origin_hit(scene, rays[i], exact_hits[i]);
+    EXPECT_EQ(differ, 0u) << scene.triangle_count() << " triangles";
+  }
+}
+
 TEST(KdTraverse, DepthOneStackGivesTheSameHitsAsTheFullStack) {
   const Scene scene = test::triangle_soup(20000, 8);
   const KdTree tree = build_kdtree(scene, BuildSettings{});

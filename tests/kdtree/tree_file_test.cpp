@@ -66,6 +66,23 @@ TEST_F(KdTreeFile, RoundTripKeepsEverything) {
   EXPECT_NO_THROW(check_tree_matches_scene(back, "a.kdtree", scene_, "s.kdscene"));
 }
 
+TEST_F(KdTreeFile, BinningIsRecordedAndAnExactTreeKeepsItsKey) {
+  BuildSettings binned, exact;
+  binned.binned_above = 20;
+  binned.bins = 32;
+  exact.binned_above = 0;
+  write_tree(path("binned.kdtree"), build_kdtree(scene_, binned));
+  write_tree(path("exact.kdtree"), build_kdtree(scene_, exact));
+  const KdTree binned_back = read_tree(path("binned.kdtree"));
+  EXPECT_EQ(binned_back.settings.binned_above, 20u);
+  EXPECT_EQ(binned_back.settings.bins, 32u);
+  EXPECT_EQ(binned_back.key, tree_key(scene_.geometry_hash, binned));
+  EXPECT_EQ(read_tree(path("exact.kdtree")).settings.binned_above, 0u);
+  EXPECT_NE(tree_key(1, binned), tree_key(1, exact));
+  // The exact sweep's key is the one trees had before binning (five fields in section 3).
+  EXPECT_EQ(tree_key(0x0123456789abcdefull, exact), 0x4237eda0fa487d3cull);
+}
+
 TEST_F(KdTreeFile, SameTreeGivesTheSameBytes) {
   write_tree(path("a.kdtree"), tree_);
   write_tree(path("b.kdtree"), build_kdtree(scene_, BuildSettings{}, BuildControl{1, {}}));

@@ -18,7 +18,9 @@ inline nlohmann::json tree_stats_json(const KdTree& tree) {
         {"empty_bonus", settings.empty_bonus},
         {"max_depth", settings.max_depth},  // as given; 0: automatic
         {"depth_limit", settings.resolved_max_depth(stats.triangles)},
-        {"perfect_splits", settings.perfect_splits}}},
+        {"perfect_splits", settings.perfect_splits},
+        {"binned_above", settings.binned_above},  // 0: the exact sweep everywhere
+        {"bins", settings.bins}}},
       {"triangles", stats.triangles},
       {"sah_cost", stats.sah_cost},
       {"nodes", tree.nodes.size()},

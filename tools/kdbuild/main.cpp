@@ -48,6 +48,18 @@ int main(int argc, char** argv) {
   app.add_flag("--no-perfect-splits", no_perfect_splits,
                "Take candidate planes from triangle bounding boxes instead of triangles clipped to the voxel")
       ->group("Tree");
+  bool exact = false;
+  auto* exact_flag =
+      app.add_flag("--exact", exact,
+                   "Choose every split by the exact sweep over all candidate planes: a slower build, for "
+                   "comparing tree quality (the same as --binned-above 0)")
+          ->group("Tree");
+  app.add_option("--binned-above", settings.binned_above,
+                 "Nodes of more triangles choose their split among binned planes, smaller ones by the exact sweep; "
+                 "0: exact everywhere")
+      ->capture_default_str()->excludes(exact_flag)->group("Tree");
+  app.add_option("--bins", settings.bins, "Bins per axis of the binned nodes")
+      ->capture_default_str()->check(CLI::Range(2u, BuildSettings::kMaxBins))->group("Tree");
   auto* cache_option = app.add_option("--cache", cache_folder,
                                       "Tree cache folder: a tree already built for this geometry and these settings "
                                       "is checked and copied, else built and stored")->group("Cache");
@@ -64,6 +76,7 @@ int main(int argc, char** argv) {
 
   return kdray::tool::run(app, argc, argv, [&] {
     settings.perfect_splits = !no_perfect_splits;
+    if (exact) settings.binned_above = 0;
     kdbuild::Report report;
     report.scene_path = scene_path;
     report.tree_path = tree_path;

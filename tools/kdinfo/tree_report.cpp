@@ -33,6 +33,11 @@ std::string tree_text(const json& j) {
                  s["kt"].get<double>(), s["ki"].get<double>(), s["empty_bonus"].get<double>(),
                  s["max_depth"].get<unsigned>(), s["max_depth"].get<unsigned>() == 0 ? " (automatic)" : "",
                  s["perfect_splits"].get<bool>() ? "on" : "off");
+  if (s["binned_above"].get<unsigned>() == 0)
+    text += "splits     exact sweep everywhere\n";
+  else
+    text += format("splits     %u bins per axis above %u triangles, exact sweep below\n", s["bins"].get<unsigned>(),
+                   s["binned_above"].get<unsigned>());
   text += format("SAH cost   %.4g\n", j["sah_cost"].get<double>());
   text += format("nodes      %llu inner, %llu leaves (%llu empty)\n", j["inner_nodes"].get<unsigned long long>(),
                  j["leaves"].get<unsigned long long>(), j["empty_leaves"].get<unsigned long long>());

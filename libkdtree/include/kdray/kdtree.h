@@ -23,12 +23,21 @@ struct BuildSettings {
   static constexpr float kDefaultEmptyBonus = 0.8f;         // lambda when one side is empty
   static constexpr uint32_t kAutoMaxDepthCap = 48;          // cap of 8 + 1.3 log2 N
   static constexpr uint32_t kMaxDepthLimit = KD_MAX_TREE_DEPTH;  // the full traversal stack
+  static constexpr uint32_t kDefaultBinnedAbove = 32768;  // nodes of more triangles are binned
+  static constexpr uint32_t kDefaultBins = 256;           // per axis
+  static constexpr uint32_t kMaxBins = 1u << 16;
 
   float traversal_cost = kDefaultTraversalCost;
   float intersection_cost = kDefaultIntersectionCost;
   float empty_bonus = kDefaultEmptyBonus;
   uint32_t max_depth = 0;      // 0: automatic, 8 + 1.3 log2 N capped at kAutoMaxDepthCap
   bool perfect_splits = true;  // false: candidate planes from unclipped triangle bounds
+  // Nodes of more than binned_above triangles choose their split among the bins - 1 evenly
+  // spaced planes of each axis, counted in bins (Shevtsov, Soupikov and Kapustin 2007), which
+  // is fast; smaller nodes take the exact sweep over every candidate plane. 0: the exact sweep
+  // everywhere (kdbuild --exact).
+  uint32_t binned_above = kDefaultBinnedAbove;
+  uint32_t bins = kDefaultBins;
 
   // The depth limit actually used for a scene of `triangles` triangles.
   uint32_t resolved_max_depth(uint64_t triangles) const;
@@ -46,7 +55,9 @@ struct TreeStats {
   double mean_leaf_depth = 0;
   double mean_triangles_per_leaf = 0;  // over non-empty leaves
   double references_per_triangle = 0;
-  double sah_cost = 0;             // K_T * sum SA(inner)/SA(root) + K_I * sum N * SA(leaf)/SA(root)
+  // The builder's cost of the whole tree, C(root) with C = lambda (K_T + P_L C_L + P_R C_R) for
+  // an inner node and K_I N for a leaf (formats/kdtree.md).
+  double sah_cost = 0;
 };
 
 struct KdTree {
@@ -74,8 +85,9 @@ using BuildProgress = std::function<void(double fraction)>;
 // Wall seconds of the phases of one build (machine-dependent, so never part of the tree).
 struct BuildTimings {
   double prepare = 0;   // triangle bounds and the root voxel
-  double events = 0;    // the root's events, sorted on each axis
-  double subdivide = 0; // choosing splits and dividing nodes down to the leaves
+  double events = 0;    // the root's events, sorted on each axis (0 when the root is binned)
+  double subdivide = 0; // choosing splits and dividing nodes down to the leaves (with the events
+                        // of the exact subtrees below binned nodes)
   double assemble = 0;  // joining the subtrees built in parallel into one node array
   double statistics = 0;
 };

@@ -78,7 +78,7 @@ constexpr uint32_t kMaxLocalTriangles = (1u << 30) - 1u;
 // Allocator whose value-less construction leaves the value uninitialised, so resize() of a
 // scratch array that is overwritten anyway costs no zero fill.
 template <typename T>
-struct UninitialisedAllocator : std::allocator<T> {
+struct UninitialisedAllocator : std::allocator<T>, DefaultInitialisingConstruct {
   template <typename U>
   struct rebind {
     using other = UninitialisedAllocator<U>;
@@ -86,14 +86,7 @@ struct UninitialisedAllocator : std::allocator<T> {
   UninitialisedAllocator() = default;
   template <typename U>
   UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
-  template <typename U>
-  void construct(U* p) noexcept {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
+  using DefaultInitialisingConstruct::construct;
 };
 using EventArray = std::vector<Event, UninitialisedAllocator<Event>>;
 

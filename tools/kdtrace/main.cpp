@@ -14,6 +14,7 @@
 #include "device_option.h"
 #include "tool_main.h"
 
+#include <optional>
 #include <string>
 
 int main(int argc, char** argv) {
@@ -32,11 +33,16 @@ int main(int argc, char** argv) {
                               [](const std::string& line) { kdray::tool::print_warning("kdtrace", line); });
     const std::vector<RayRecord> rays = kdtrace::rays_to_trace(o, scene, tree);
     const kdray::TraceOptions options = kdtrace::traversal_options(o, host);
-    const kdtrace::TraceRun run = kdtrace::trace_on(host, scene, tree, rays, options, o.opencl_device);
+    // The host traversal's set-up (the gathered triangle vertices), done once for a host run and
+    // for the counting pass of --json.
+    std::optional<kdray::PreparedTraversal> prepared;
+    if (host || o.flags.json) prepared.emplace(scene, tree);
+    const kdtrace::TraceRun run =
+        kdtrace::trace_on(host ? &*prepared : nullptr, scene, tree, rays, options, o.opencl_device);
     if (!o.hits_path.empty()) kdray::write_hits(o.hits_path, run.hits);
 
     if (o.flags.json) {
-      const kdray::TraversalWork work = kdtrace::count_work(scene, tree, rays, options.threads);
+      const kdray::TraversalWork work = kdtrace::count_work(*prepared, rays, options.threads);
       kdray::tool::print_json(kdtrace::trace_json(o, host, rays.size(), run, work));
     } else if (!o.flags.quiet) {
       kdtrace::print_trace(host, rays.size(), run);

@@ -5,7 +5,6 @@
 
 #include "process_stats.h"
 
-#include <optional>
 
 namespace kdtrace {
 
@@ -19,31 +18,28 @@ std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene& scene
   return rays;
 }
 
-TraceRun trace_on(bool host, const kdray::Scene& scene, const kdray::KdTree& tree, const std::vector<RayRecord>& rays,
-                  const kdray::TraceOptions& options, kdray::DeviceSelection opencl_device) {
+TraceRun trace_on(const kdray::PreparedTraversal* host_traversal, const kdray::Scene& scene, const kdray::KdTree& tree,
+                  const std::vector<RayRecord>& rays, const kdray::TraceOptions& options,
+                  kdray::DeviceSelection opencl_device) {
   TraceRun run;
-  // Gathering the triangle vertices is set-up, like the OpenCL upload: not part of the rate.
-  const std::optional<kdray::PreparedTraversal> cpu_traversal =
-      host ? std::optional<kdray::PreparedTraversal>(std::in_place, scene, tree) : std::nullopt;
   const double cpu_start = kdray::tool::cpu_seconds();
   const auto start = kdray::Clock::now();
-  if (host) {
-    cpu_traversal->closest(rays, run.hits, options);
+  if (host_traversal) {
+    host_traversal->closest(rays, run.hits, options);
   } else {
     opencl_device.short_stack_size = kdray::kernel_stack_size(options.stack);
     opencl_device.robust_traversal = options.path == kdray::TraversalPath::Robust;
     run.hits = kdray::trace_rays_opencl(scene, tree, rays, opencl_device, &run.opencl);
   }
-  run.seconds = host ? kdray::seconds_since(start)
-                     : run.opencl.trace_seconds;
+  run.seconds = host_traversal ? kdray::seconds_since(start) : run.opencl.trace_seconds;
   run.cpu_seconds = kdray::tool::cpu_seconds() - cpu_start;
   return run;
 }
 
-kdray::TraversalWork count_work(const kdray::Scene& scene, const kdray::KdTree& tree, const std::vector<RayRecord>& rays,
+kdray::TraversalWork count_work(const kdray::PreparedTraversal& traversal, const std::vector<RayRecord>& rays,
                                 unsigned threads) {
   std::vector<HitRecord> counted_hits;
-  return kdray::PreparedTraversal(scene, tree).count_work(rays, counted_hits, {threads, kdray::TraversalStack::Short});
+  return traversal.count_work(rays, counted_hits, {threads, kdray::TraversalStack::Short});
 }
 
 }  // namespace kdtrace

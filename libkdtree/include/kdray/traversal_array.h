@@ -14,6 +14,19 @@
 
 namespace kdray {
 namespace detail {
+// The construct() of an allocator whose value-less construction leaves the value uninitialised,
+// so that resize() of an array overwritten anyway costs no zero fill.
+struct DefaultInitialisingConstruct {
+  template <typename U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
 // Memory of `bytes` bytes, aligned to a huge page and advised for huge pages when it spans one
 // (advice only: where the kernel has none to give, it keeps 4 KiB pages). Freed with std::free.
 void* allocate_traversal_memory(size_t bytes);
@@ -21,7 +34,7 @@ void free_traversal_memory(void* memory) noexcept;
 }  // namespace detail
 
 template <typename T>
-struct TraversalAllocator {
+struct TraversalAllocator : detail::DefaultInitialisingConstruct {
   using value_type = T;
   TraversalAllocator() = default;
   template <typename U>
@@ -32,15 +45,6 @@ struct TraversalAllocator {
     return static_cast<T*>(detail::allocate_traversal_memory(count * sizeof(T)));
   }
   void deallocate(T* memory, size_t) noexcept { detail::free_traversal_memory(memory); }
-
-  template <typename U>
-  void construct(U* p) noexcept {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
 
   template <typename U>
   bool operator==(const TraversalAllocator<U>&) const noexcept {

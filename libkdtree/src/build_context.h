@@ -26,11 +26,12 @@ class FinishedSubtrees {
 };
 
 struct BuildContext {
-  BuildContext(const Scene& scene, const BuildSettings& settings, const BuildControl& control, uint64_t triangles)
+  // `settings` resolved (BuildSettings::resolved): max_depth is the limit applied.
+  BuildContext(const Scene& scene, const BuildSettings& settings, const BuildControl& control)
       : scene(scene),
         settings(settings),
         cost(cost_model_of(settings)),
-        max_depth(settings.resolved_max_depth(triangles)),
+        max_depth(settings.max_depth),
         small_parameters{cost, max_depth, settings.perfect_splits},
         finished(control.progress) {}
 

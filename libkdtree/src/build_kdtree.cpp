@@ -15,14 +15,18 @@
 
 namespace kdray {
 
-uint32_t BuildSettings::resolved_max_depth(uint64_t triangles) const {
-  if (max_depth != 0) return max_depth;
-  const double automatic = 8.0 + 1.3 * std::log2(static_cast<double>(std::max<uint64_t>(triangles, 1)));
-  return std::min(kAutoMaxDepthCap, static_cast<uint32_t>(automatic));
+BuildSettings BuildSettings::resolved(uint64_t triangles) const {
+  BuildSettings explicit_settings = *this;
+  if (max_depth == 0) {
+    const double automatic = 8.0 + std::log2(static_cast<double>(std::max<uint64_t>(triangles, 1)));
+    explicit_settings.max_depth = std::min(kAutoMaxDepthCap, static_cast<uint32_t>(automatic));
+  }
+  return explicit_settings;
 }
 
-KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const BuildControl& control) {
-  detail::validate_settings(settings);
+KdTree build_kdtree(const Scene& scene, const BuildSettings& given, const BuildControl& control) {
+  detail::validate_settings(given);
+  const BuildSettings settings = given.resolved(scene.triangle_count());
   BuildTimings timings;
   auto lap = [last = std::chrono::steady_clock::now()](double& phase) mutable {
     const auto now = std::chrono::steady_clock::now();
@@ -34,7 +38,7 @@ KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const Bui
     detail::RootWork root = detail::prepare_root(scene);
     lap(timings.prepare);
     const detail::Box3 voxel = root.voxel;
-    detail::BuildContext context(scene, settings, control, root.triangles.size());
+    detail::BuildContext context(scene, settings, control);
     detail::Piece root_piece;
     if (detail::binned(settings, root.triangles.size())) {
       detail::BinnedNode node{voxel, 0, std::move(root.triangles), std::move(root.bounds)};

@@ -200,7 +200,7 @@ std::vector<CacheEntry> TreeCache::evict(uint64_t max_bytes, uint64_t keep) {
 
 CachedTree cached_tree(TreeCache& cache, const Scene& scene, const std::string& scene_path,
                        const BuildSettings& settings, const BuildControl& control, const std::string& output) {
-  const uint64_t key = tree_key(scene.geometry_hash, settings);
+  const uint64_t key = tree_key(scene.geometry_hash, settings.resolved(scene.triangle_count()));
   std::optional<KdTree> found = output.empty() ? cache.load(key, scene_path) : cache.copy_out(key, output, scene_path);
   if (found) return {std::move(*found), true, cache.tree_path(key)};
 

@@ -96,7 +96,7 @@ TEST(KdBuild, StatisticsDescribeTheTree) {
   EXPECT_EQ(stats.leaves, stats.inner_nodes + 1);
   EXPECT_EQ(stats.leaf_references, tree.leaf_triangles.size());
   EXPECT_GE(stats.references_per_triangle, 1.0);
-  EXPECT_LE(stats.max_depth, BuildSettings{}.resolved_max_depth(scene.triangle_count()));
+  EXPECT_LE(stats.max_depth, BuildSettings{}.resolved(scene.triangle_count()).max_depth);
   EXPECT_GT(stats.empty_leaves, 0u) << "empty space around a sphere is cut off";
   EXPECT_GT(stats.sah_cost, 0.0);
   EXPECT_LT(stats.sah_cost, 20.0 * scene.triangle_count()) << "much cheaper than one leaf";
@@ -109,8 +109,27 @@ TEST(KdBuild, MaxDepthIsRespected) {
   settings.max_depth = 3;
   const KdTree tree = build_kdtree(scene, settings);
   EXPECT_EQ(tree.stats.max_depth, 3u);
-  EXPECT_EQ(BuildSettings{}.resolved_max_depth(1u << 20), 34u);
-  EXPECT_EQ(BuildSettings{}.resolved_max_depth(uint64_t{1} << 40), BuildSettings::kAutoMaxDepthCap);
+  EXPECT_EQ(BuildSettings{}.resolved(1u << 20).max_depth, 28u);
+  EXPECT_EQ(BuildSettings{}.resolved(uint64_t{1} << 40).max_depth, BuildSettings::kAutoMaxDepthCap);
+  EXPECT_EQ(settings.resolved(1u << 20).max_depth, 3u) << "an explicit limit stays";
+}
+
+// The automatic limit depends on the scene, so a tree records the limit it was built with, and
+// its key names that limit: the same tree asked for by its explicit limit has the same key.
+TEST(KdBuild, AutomaticDepthLimitIsRecordedInTheTree) {
+  const Scene scene = test::triangle_soup(2000, 5);
+  const KdTree automatic = build_kdtree(scene, BuildSettings{});
+  const uint32_t limit = BuildSettings{}.resolved(scene.triangle_count()).max_depth;
+  EXPECT_EQ(automatic.settings.max_depth, limit);
+  EXPECT_LE(automatic.stats.max_depth, limit);
+  BuildSettings explicit_settings;
+  explicit_settings.max_depth = limit;
+  const KdTree explicit_tree = build_kdtree(scene, explicit_settings);
+  EXPECT_EQ(explicit_tree.key, automatic.key);
+  EXPECT_EQ(explicit_tree.nodes.size(), automatic.nodes.size());
+  BuildSettings deeper;
+  deeper.max_depth = limit + 1;
+  EXPECT_NE(build_kdtree(scene, deeper).key, automatic.key);
 }
 
 TEST(KdBuild, RejectsSettingsOutOfRange) {
@@ -264,7 +283,7 @@ TEST(KdBuild, BinnedTreeIsValidAndCloseToTheExactOne) {
       const TreeStats& stats = binned.stats;
       EXPECT_EQ(stats.inner_nodes + stats.leaves, binned.nodes.size());
       EXPECT_EQ(stats.leaves, stats.inner_nodes + 1);
-      EXPECT_LE(stats.max_depth, settings.resolved_max_depth(scene.triangle_count()));
+      EXPECT_LE(stats.max_depth, settings.resolved(scene.triangle_count()).max_depth);
       expect_all_triangles_referenced(scene, binned);
       for (const KdNode& node : binned.nodes) {
         if (!kd_node_is_leaf(node)) continue;
@@ -292,10 +311,12 @@ TEST(KdBuild, RejectsBinCountsOutOfRange) {
   EXPECT_NO_THROW(build_kdtree(scene, binned_above(0, 1))) << "bins do not matter to the exact sweep";
 }
 
-// The exact sweep's trees, pinned to the bytes it built before the binned builder existed.
+// The exact sweep's trees, pinned to the bytes it built before the binned builder existed, at
+// the automatic depth limit these scenes had then (8 + 1.3 log2 N: 26 for all three).
 TEST(KdBuild, ExactBuilderKeepsItsTrees) {
   BuildSettings exact;
   exact.binned_above = 0;
+  exact.max_depth = 26;
   EXPECT_EQ(tree_fingerprint(build_kdtree(test::triangle_soup(25000, 17), exact)), 0xa1ed67ad0a783883ull);
   EXPECT_EQ(tree_fingerprint(build_kdtree(test::icosphere_scene(5, {0.25f, 0, 0}, 1), exact)), 0x8813462f65c7664dull);
   std::string path;

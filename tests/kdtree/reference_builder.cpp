@@ -69,11 +69,12 @@ class ResortingBuilder {
 
 }  // namespace
 
-KdTree build_kdtree_by_resorting(const Scene& scene, const BuildSettings& settings) {
-  validate_settings(settings);
+KdTree build_kdtree_by_resorting(const Scene& scene, const BuildSettings& given) {
+  validate_settings(given);
+  const BuildSettings settings = given.resolved(scene.triangle_count());
   const RootWork root = prepare_root(scene);
   Subtree built;
-  ResortingBuilder(scene, settings, settings.resolved_max_depth(root.triangles.size()))
+  ResortingBuilder(scene, settings, settings.max_depth)
       .build(root.voxel, 0, root.triangles, root.bounds, built);
   return finish_tree(scene, settings, root.voxel, std::move(built));
 }

@@ -55,7 +55,7 @@ class TreeCacheTest : public test::TempDirTest<> {
 };
 
 TEST_F(TreeCacheTest, TheKeyCoversGeometrySettingsAndNothingElse) {
-  const uint64_t key = tree_key(scene_.geometry_hash, BuildSettings{});
+  const uint64_t key = tree_key(scene_.geometry_hash, BuildSettings{}.resolved(scene_.triangle_count()));
   Scene recoloured = scene_;
   recoloured.materials[0].base_color = {0.1f, 0.2f, 0.3f};
   recoloured.cameras.push_back(default_camera(scene_bounds(recoloured)));
@@ -72,10 +72,10 @@ TEST_F(TreeCacheTest, TheKeyCoversGeometrySettingsAndNothingElse) {
 
   BuildSettings costly;
   costly.traversal_cost = 30;
-  EXPECT_NE(tree_key(scene_.geometry_hash, costly), key);
+  EXPECT_NE(tree_key(scene_.geometry_hash, costly.resolved(scene_.triangle_count())), key);
   BuildSettings coarse;
   coarse.perfect_splits = false;
-  EXPECT_NE(tree_key(scene_.geometry_hash, coarse), key);
+  EXPECT_NE(tree_key(scene_.geometry_hash, coarse.resolved(scene_.triangle_count())), key);
 
   const KdTree tree = build_kdtree(scene_, BuildSettings{});
   EXPECT_EQ(tree.geometry_hash, scene_.geometry_hash);
@@ -144,7 +144,7 @@ TEST_F(TreeCacheTest, AnEntryUnderAnotherKeysNameIsDamage) {
   const CachedTree built = cached_tree(trees, scene_, path("room.kdscene"), BuildSettings{});
   BuildSettings costly;
   costly.traversal_cost = 30;
-  fs::copy_file(built.entry, trees.tree_path(tree_key(scene_.geometry_hash, costly)));
+  fs::copy_file(built.entry, trees.tree_path(tree_key(scene_.geometry_hash, costly.resolved(scene_.triangle_count()))));
   EXPECT_FALSE(cached_tree(trees, scene_, path("room.kdscene"), costly).hit);
   ASSERT_EQ(warnings_.size(), 1u);
   EXPECT_NE(warnings_[0].find("holds the tree of key"), std::string::npos) << warnings_[0];

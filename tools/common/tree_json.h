@@ -16,8 +16,8 @@ inline nlohmann::json tree_stats_json(const KdTree& tree) {
        {{"kt", settings.traversal_cost},
         {"ki", settings.intersection_cost},
         {"empty_bonus", settings.empty_bonus},
-        {"max_depth", settings.max_depth},  // as given; 0: automatic
-        {"depth_limit", settings.resolved_max_depth(stats.triangles)},
+        {"max_depth", settings.max_depth},  // as recorded; 0: automatic, in trees written before limits were recorded
+        {"depth_limit", settings.max_depth != 0 ? nlohmann::json(settings.max_depth) : nlohmann::json(nullptr)},
         {"perfect_splits", settings.perfect_splits},
         {"binned_above", settings.binned_above},  // 0: the exact sweep everywhere
         {"bins", settings.bins}}},

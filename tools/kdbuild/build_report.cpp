@@ -8,6 +8,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <string>
 
 namespace kdbuild {
 namespace {
@@ -64,8 +65,9 @@ std::string report_text(const Report& r) {
   text += format("  inner nodes              %llu\n", static_cast<unsigned long long>(s.inner_nodes));
   text += format("  leaves                   %llu (%llu empty, %.1f%%)\n", static_cast<unsigned long long>(s.leaves),
                  static_cast<unsigned long long>(s.empty_leaves), empty_share);
-  text += format("  leaf depth               max %u, mean %.2f (limit %u)\n", s.max_depth, s.mean_leaf_depth,
-                 r.tree.settings.resolved_max_depth(s.triangles));
+  const uint32_t limit = r.tree.settings.max_depth;
+  text += format("  leaf depth               max %u, mean %.2f (limit %s)\n", s.max_depth, s.mean_leaf_depth,
+                 limit != 0 ? std::to_string(limit).c_str() : "automatic");
   text += format("  triangles per leaf       %.2f (non-empty leaves)\n", s.mean_triangles_per_leaf);
   text += format("  references per triangle  %.3f\n", s.references_per_triangle);
   if (r.cache == "hit") {

@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   app.add_option("--empty-bonus", settings.empty_bonus, "Factor lambda on splits that cut off empty space, in (0, 1]")
       ->capture_default_str()->check(CLI::Range(1e-6, 1.0))->group("Cost model");
   app.add_option("--max-depth", settings.max_depth,
-                 "Depth limit; 0: 8 + 1.3 log2 N, at most " + std::to_string(BuildSettings::kAutoMaxDepthCap) +
+                 "Depth limit; 0: 8 + log2 N, at most " + std::to_string(BuildSettings::kAutoMaxDepthCap) +
                      " (limit " + std::to_string(BuildSettings::kMaxDepthLimit) + ")")
       ->capture_default_str()->check(CLI::Range(0u, BuildSettings::kMaxDepthLimit))->group("Tree");
   app.add_flag("--no-perfect-splits", no_perfect_splits,

@@ -21,7 +21,7 @@ struct BuildSettings {
   static constexpr float kDefaultTraversalCost = 15.0f;     // K_T
   static constexpr float kDefaultIntersectionCost = 20.0f;  // K_I
   static constexpr float kDefaultEmptyBonus = 0.8f;         // lambda when one side is empty
-  static constexpr uint32_t kAutoMaxDepthCap = 48;          // cap of 8 + 1.3 log2 N
+  static constexpr uint32_t kAutoMaxDepthCap = 48;          // cap of 8 + log2 N
   static constexpr uint32_t kMaxDepthLimit = KD_MAX_TREE_DEPTH;  // the full traversal stack
   static constexpr uint32_t kDefaultBinnedAbove = 32768;  // nodes of more triangles are binned
   static constexpr uint32_t kDefaultBins = 256;           // per axis
@@ -30,7 +30,9 @@ struct BuildSettings {
   float traversal_cost = kDefaultTraversalCost;
   float intersection_cost = kDefaultIntersectionCost;
   float empty_bonus = kDefaultEmptyBonus;
-  uint32_t max_depth = 0;      // 0: automatic, 8 + 1.3 log2 N capped at kAutoMaxDepthCap
+  // 0: automatic, 8 + log2 N capped at kAutoMaxDepthCap (N: the scene's triangles). A tree
+  // records the limit it was built with, never 0 (trees written before that record 0).
+  uint32_t max_depth = 0;
   bool perfect_splits = true;  // false: candidate planes from unclipped triangle bounds
   // Nodes of more than binned_above triangles choose their split among the bins - 1 evenly
   // spaced planes of each axis, counted in bins (Shevtsov, Soupikov and Kapustin 2007), which
@@ -39,8 +41,9 @@ struct BuildSettings {
   uint32_t binned_above = kDefaultBinnedAbove;
   uint32_t bins = kDefaultBins;
 
-  // The depth limit actually used for a scene of `triangles` triangles.
-  uint32_t resolved_max_depth(uint64_t triangles) const;
+  // These settings with the automatic depth limit made explicit for a scene of `triangles`
+  // triangles: what the tree built from them records, and what its key names.
+  BuildSettings resolved(uint64_t triangles) const;
 };
 
 // Structure and quality of a built tree. Deterministic: recorded in the file, so it holds no
@@ -75,7 +78,8 @@ struct KdTree {
 };
 
 // The key of the tree of a scene with this geometry hash built with these settings: XXH3-64 over
-// the geometry hash, the encoded settings and the tree format version (formats/kdtree.md).
+// the geometry hash, the encoded settings and the tree format version (formats/kdtree.md). A built
+// tree's settings are resolved (BuildSettings::resolved), so its key is that of the resolved ones.
 uint64_t tree_key(uint64_t geometry_hash, const BuildSettings& settings);
 
 // Called with the fraction of triangles placed in finished subtrees (0..1), from any thread,

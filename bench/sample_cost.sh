@@ -6,8 +6,8 @@
 # Runs are interleaved across the paths (the machine may be shared), RUNS runs each.
 # usage: [RUNS=3] [LOW=32] [HIGH=128] [PATHS="megakernel wavefront host"] bench/sample_cost.sh [BUILD_DIR]
 # A path is one of: megakernel (PoCL), wavefront (PoCL, --wavefront), host (--device host
-# --threads 2), lanes (--device host --threads 2 --lanes). Besides the wall times, the processes'
-# CPU seconds (user + system), which a shared machine disturbs less.
+# --threads 2). Besides the wall times, the processes' CPU seconds (user + system), which a shared
+# machine disturbs less.
 set -euo pipefail
 BUILD=$(realpath "${1:-build}")
 . "$(dirname "$0")/common.sh"
@@ -26,7 +26,6 @@ path_options() {
     megakernel) echo "--device cpu" ;;
     wavefront) echo "--device cpu --wavefront" ;;
     host) echo "--device host --threads 2" ;;
-    lanes) echo "--device host --threads 2 --lanes" ;;
     *) echo "sample_cost.sh: error: unknown path '$1'" >&2 && exit 2 ;;
   esac
 }

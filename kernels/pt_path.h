@@ -88,19 +88,7 @@ KD_INLINE float2 pt_sample2(KD_GLOBAL const PtRenderParams* params, uint sample_
   return KD_FLOAT2(pt_bits_to_unit(bits.x), pt_bits_to_unit(bits.y));
 }
 /* Sample value `dim` (PT_DIM_*, kernels/pt_rng.h) of the path's current bounce, or both values
- * of the pair starting at even `dim`. The C++ lane renderer (librender/src/render_lanes.cpp)
- * hashes a bounce's values for a packet of paths at once and hands each path its own through
- * PT_GIVEN_BOUNCE_BITS(path, dim): the bits pt_hashed_bits gives. */
-#ifdef PT_GIVEN_BOUNCE_BITS
-KD_INLINE float pt_path_sample(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
-  (void)params;
-  return pt_bits_to_unit(PT_GIVEN_BOUNCE_BITS(path, dim));
-}
-KD_INLINE float2 pt_path_sample2(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
-  (void)params;
-  return KD_FLOAT2(pt_bits_to_unit(PT_GIVEN_BOUNCE_BITS(path, dim)), pt_bits_to_unit(PT_GIVEN_BOUNCE_BITS(path, dim + 1)));
-}
-#else
+ * of the pair starting at even `dim`. */
 KD_INLINE float pt_path_sample(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
   return pt_bits_to_unit(
       pt_hashed_bits(params->sampler, path->sample_hash, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim));
@@ -108,7 +96,6 @@ KD_INLINE float pt_path_sample(const PtPath* path, KD_GLOBAL const PtRenderParam
 KD_INLINE float2 pt_path_sample2(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
   return pt_sample2(params, path->sample_hash, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim);
 }
-#endif
 
 KD_INLINE RayRecord pt_path_ray(const PtPath* path) { return pt_ray(path->origin, path->direction, INFINITY); }
 KD_INLINE RayRecord pt_shadow_ray(const PtPath* path) { return pt_ray(path->shadow_origin, path->shadow_span, 1.0f); }
@@ -449,16 +436,6 @@ KD_INLINE void pt_path_accumulate(const PtPath* path, KD_GLOBAL const PtRenderPa
   if (params->aov_mask & PT_AOV_DEPTH) sums[c++] += pt_fixed(path->depth, nonfinite);
 }
 
-/* Advances a live path by one step: its closest hit, shaded, and the shadow ray the shading asked
- * for. Returns the number of rays traced. */
-KD_INLINE uint pt_path_step(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params) {
-  HitRecord hit = kd_intersect_closest(&scene->kd, pt_path_ray(path));
-  pt_path_shade(path, scene, params, hit);
-  if (!path->shadow_pending) return 1;
-  pt_path_resolve_shadow(path, pt_path_occluded(scene, path, params));
-  return 2;
-}
-
 /* Traces sample `sample` of `pixel` to its end and adds it to the pixel's channel sums; returns
  * the number of rays traced. The megakernel's whole per-sample work, and the C++ build's. */
 KD_INLINE uint pt_render_sample(const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params, uint pixel, uint sample,
@@ -466,7 +443,15 @@ KD_INLINE uint pt_render_sample(const PtSceneData* scene, KD_GLOBAL const PtRend
   uint rays = 0;
   PtPath path;
   pt_path_begin(&path, params, pixel, sample);
-  while (path.alive) rays += pt_path_step(&path, scene, params);
+  while (path.alive) {
+    HitRecord hit = kd_intersect_closest(&scene->kd, pt_path_ray(&path));
+    ++rays;
+    pt_path_shade(&path, scene, params, hit);
+    if (path.shadow_pending) {
+      ++rays;
+      pt_path_resolve_shadow(&path, pt_path_occluded(scene, &path, params));
+    }
+  }
   pt_path_accumulate(&path, params, sums, nonfinite);
   return rays;
 }

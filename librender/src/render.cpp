@@ -304,7 +304,6 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& reques
     devices.push_back(prepare_host(scene, tree, settings, device, camera, environment));
   } else {
     if (device.threads) throw Error("", "threads are for the host device; OpenCL devices run their own");
-    if (settings.form == RenderForm::Lanes) throw Error("", "the lanes form is for the host, not OpenCL devices");
     for (const DeviceSelection& selection : split_device_selection(device)) {
       devices.push_back(prepare_device(scene, tree, settings, selection, camera, environment));
     }

@@ -1,16 +1,45 @@
 // The host renderer (device "host"): kernels/pt_path.h compiled as C++ and run on the CPU with
 // oneTBB, into the same fixed-point film as the OpenCL kernels, bit for bit.
 //
-// Forms. RenderForm::Megakernel runs each path to its end, as the megakernel does;
-// RenderForm::Lanes runs packets of paths (render_lanes.cpp). Both write the same film.
+// Features. An OpenCL program is built for its scene's feature set (KD_FEATURE_*), which keeps
+// PoCL's compile short and the kernel small. Here the integrator is compiled once with every
+// feature in (KD_ALL_FEATURES) rather than in up to 2^14 variants: each KD_FEATURE_* part either
+// acts only on data the scene has (a material's type, a texture index >= 0, a light count) or
+// asks the scene's feature bits (PT_USES, kernels/pt_types.h), so where a feature is absent it
+// does what the kernel built without it does, operation for operation. The MIS switch (KD_MIS_OFF)
+// is compiled in and read from the bits the same way. tests/render/cpu_integrator_*_test.cpp
+// check the films against kernels of different feature sets bit for bit.
 //
-// Determinism. One task sums all of a pixel's samples of a pass, and the sums are fixed-point
-// integers, so the film depends neither on the thread count nor on the passes.
-#include "host_path.h"  // first: its defines shape the device code's headers
+// Determinism. One task sums all of a pixel's samples of a pass, in sample order, and the sums
+// are fixed-point integers, so the film depends neither on the thread count nor on the passes.
+//
+// Compiled with -ffp-contract=off (librender/CMakeLists.txt), as the kernels are (kd_compat.h).
+#define KD_ALL_FEATURES
+#define KD_FEATURE_EMISSION
+#define KD_FEATURE_MIRROR
+#define KD_FEATURE_GLOSSY
+#define KD_FEATURE_GLASS
+#define KD_FEATURE_METALLIC_ROUGHNESS
+#define KD_FEATURE_ALPHA
+#define KD_FEATURE_TEXTURES
+#define KD_FEATURE_METAL_ROUGH_TEXTURE
+#define KD_FEATURE_NORMAL_MAP
+#define KD_FEATURE_EMISSIVE_TEXTURE
+#define KD_FEATURE_NORMALS
+#define KD_FEATURE_ENVIRONMENT
+#define KD_FEATURE_PUNCTUAL
+#define KD_FEATURE_ORTHOGRAPHIC
+#define KD_MIS_OFF  // a switch, asked of the scene's bits as the features are
+#define KD_EMPTY_LEAF_NODES  // as the megakernel: the same hits, fewer node fetches
+
 #include "render_internal.h"
 
 #include <kdray/clock.h>
 #include <kdray/threads.h>
+
+#include <kernels/kd_types.h>
+#include <kernels/kd_vector.h>
+#include <kernels/pt_types.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -19,23 +48,30 @@
 #include <chrono>
 #include <utility>
 
+// The device code, in this file's own namespace: no other file compiles it with these defines.
+namespace {
+#include <kernels/pt_path.h>
+}  // namespace
+
 namespace kdray {
 namespace {
 
 // Pixels per task: consecutive pixels of a row, whose rays are coherent.
 constexpr uint32_t kPixelsPerTask = 16;
 
-// Samples params.sample_offset .. + sample_count - 1 of pixels [begin, end), one path at a time.
-void render_pixels_one_by_one(const SceneArrays& arrays, const PtRenderParams& params, uint32_t begin, uint32_t end,
-                              int64_t* film, uint64_t* rays, uint32_t* nonfinite) {
-  const PtSceneData scene = make_scene(arrays, &params);
-  for (uint32_t pixel = begin; pixel != end; ++pixel) *rays += pt_render_pixel(&scene, &params, pixel, film, nonfinite);
+PtSceneData make_scene(const SceneArrays& arrays, const PtRenderParams* params) {
+#define KD_HOST_GEOMETRY(type, name) const type* name = static_cast<const type*>(arrays.geometry.name.data);
+#define KD_HOST_SHADING(type, name) const type* name = static_cast<const type*>(arrays.name.data);
+  PT_SCENE_BUFFERS(KD_HOST_GEOMETRY, KD_HOST_SHADING)
+#undef KD_HOST_GEOMETRY
+#undef KD_HOST_SHADING
+  return PT_MAKE_SCENE();
 }
 
 class HostRender : public RenderWorker {
  public:
-  HostRender(SceneArrays arrays, const PtRenderParams& params, unsigned threads, HostPixelRenderer render_pixels)
-      : arrays_(std::move(arrays)), params_(params), render_pixels_(render_pixels),
+  HostRender(SceneArrays arrays, const PtRenderParams& params, unsigned threads)
+      : arrays_(std::move(arrays)), params_(params),
         threads_(thread_count(threads)),
         film_(size_t(params.width) * params.height * params.film_channels, 0) {}
 
@@ -45,13 +81,14 @@ class HostRender : public RenderWorker {
     PtRenderParams params = params_;
     params.sample_offset = first;
     params.sample_count = count;
+    const PtSceneData scene = make_scene(arrays_, &params);
     run_with_threads(threads_, [&] {
       tbb::parallel_for(tbb::blocked_range<uint32_t>(0, params.width * params.height, kPixelsPerTask),
                         [&](const tbb::blocked_range<uint32_t>& pixels) {
                           uint64_t rays = 0;
-                          uint32_t nonfinite = 0;
-                          render_pixels_(arrays_, params, pixels.begin(), pixels.end(), film_.data(), &rays,
-                                         &nonfinite);
+                          uint nonfinite = 0;
+                          for (uint32_t pixel = pixels.begin(); pixel != pixels.end(); ++pixel)
+                            rays += pt_render_pixel(&scene, &params, pixel, film_.data(), &nonfinite);
                           rays_ += rays;
                           nonfinite_ += nonfinite;
                         });
@@ -67,7 +104,6 @@ class HostRender : public RenderWorker {
  private:
   const SceneArrays arrays_;
   const PtRenderParams params_;
-  const HostPixelRenderer render_pixels_;
   const unsigned threads_;
   std::vector<int64_t> film_;
   std::atomic<uint64_t> rays_{0}, nonfinite_{0};
@@ -81,9 +117,7 @@ std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tre
   const auto start = std::chrono::steady_clock::now();
   SceneArrays arrays = scene_arrays(scene, tree, environment.get());
   const PtRenderParams params = render_params(scene, settings, camera, arrays, environment.get());
-  const bool lanes = settings.form == RenderForm::Lanes;
-  auto host = std::make_unique<HostRender>(std::move(arrays), params, device.threads,
-                                           lanes ? render_pixels_in_lanes : render_pixels_one_by_one);
+  auto host = std::make_unique<HostRender>(std::move(arrays), params, device.threads);
   RenderStats& stats = host->stats;
   stats.device = kHostDevice;
   // Every feature compiled in; the scene's own, as an OpenCL build would name them, gate them.

@@ -1,5 +1,5 @@
 // Internal to librender: what the render driver (render.cpp) shares with the wavefront driver
-// (wavefront.cpp) and the host renderers (render_host.cpp, render_lanes.cpp).
+// (wavefront.cpp) and the host renderer (render_host.cpp).
 #pragma once
 
 #include "device_scene.h"
@@ -39,19 +39,7 @@ void set_camera(PtRenderParams& params, const Camera& camera, uint32_t width, ui
 PtRenderParams render_params(const Scene& scene, const RenderSettings& settings, const Camera& camera,
                              const SceneArrays& arrays, const Environment* environment);
 
-// Renders samples params.sample_offset .. + sample_count - 1 of pixels [begin, end) with the C++
-// build of kernels/pt_path.h, adding each pixel's sums into film (the Film::sums layout), the rays
-// traced into *rays and the non-finite values into *nonfinite. Every such renderer writes the same
-// film.
-using HostPixelRenderer = void (*)(const SceneArrays& arrays, const PtRenderParams& params, uint32_t begin,
-                                   uint32_t end, int64_t* film, uint64_t* rays, uint32_t* nonfinite);
-// The one for RenderForm::Lanes: packets of paths, each bounce's sample values hashed for the
-// whole packet at once (render_lanes.cpp).
-void render_pixels_in_lanes(const SceneArrays& arrays, const PtRenderParams& params, uint32_t begin, uint32_t end,
-                            int64_t* film, uint64_t* rays, uint32_t* nonfinite);
-
-// The host worker: the C++ build of kernels/pt_path.h on the CPU (render_host.cpp), in the form
-// settings.form names (Megakernel: one path at a time; Lanes).
+// The host worker: the C++ build of kernels/pt_path.h on the CPU (render_host.cpp).
 std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
                                            const DeviceSelection& device, const Camera& camera,
                                            const std::shared_ptr<const Environment>& environment);

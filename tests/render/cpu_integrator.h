@@ -1,6 +1,5 @@
 // The path tracer's C++ build against its OpenCL kernel: librender's host renderer (kernels/
-// pt_path.h compiled once with every feature in, librender/src/render_host.cpp, one path at a time
-// and in lanes, render_lanes.cpp) and the PoCL
+// pt_path.h compiled once with every feature in, librender/src/render_host.cpp) and the PoCL
 // kernel built for the scene's own features render the same film, every pixel's fixed-point sums
 // bit for bit. Each test names the features its scene's kernel is built with, so together they
 // show that a feature compiled in but unused changes no bit. The host renderer and the kernels
@@ -33,28 +32,9 @@ inline std::set<std::string> option_defines(const std::string& options) {
   return defines;
 }
 
-// Expects the host's film in `form` to hold the kernel's sums; returns the number of pixels whose
-// radiance is not zero in the kernel's film.
-inline size_t expect_same_sums(const Film& cpu, const Film& film, const char* form) {
-  EXPECT_EQ(cpu.sums.size(), film.sums.size()) << form;
-  const size_t channels = film.channels.size();
-  size_t mismatches = 0, lit = 0;
-  for (size_t i = 0; i < std::min(cpu.sums.size(), film.sums.size()); ++i) {
-    if (i % channels == 0 && (film.sums[i] || film.sums[i + 1] || film.sums[i + 2])) ++lit;
-    if (cpu.sums[i] == film.sums[i]) continue;
-    if (++mismatches <= 5) {
-      ADD_FAILURE() << form << ": pixel " << i / channels << " channel " << film.channels[i % channels] << ": C++ "
-                    << cpu.sums[i] << ", kernel " << film.sums[i];
-    }
-  }
-  EXPECT_EQ(mismatches, 0u) << form << ": of " << cpu.sums.size() << " film sums";
-  return lit;
-}
-
-// Renders the scene on PoCL and on the host (with `threads`, 0: all cores), one path at a time and
-// in lanes (RenderForm::Lanes), and expects the same film sums from all three, and the kernel
-// built with exactly the -D options `kernel_defines`. Returns the number of pixels whose radiance
-// is not zero (so a caller can check the scene is lit).
+// Renders the scene on PoCL and on the host (with `threads`, 0: all cores) and expects the same
+// film sums, and the kernel built with exactly the -D options `kernel_defines`. Returns the number
+// of pixels whose radiance is not zero (so a caller can check the scene is lit).
 inline size_t expect_host_matches_kernel(Scene& scene, const RenderSettings& settings,
                                          const std::set<std::string>& kernel_defines, unsigned threads = 0) {
   const KdTree tree = tree_for(scene);
@@ -66,11 +46,19 @@ inline size_t expect_host_matches_kernel(Scene& scene, const RenderSettings& set
   RenderStats stats;
   const Film cpu = render(scene, tree, settings, host, &stats);
   EXPECT_EQ(stats.device, kHostDevice);
-  RenderSettings in_lanes = settings;
-  in_lanes.form = RenderForm::Lanes;
-  const Film lanes = render(scene, tree, in_lanes, host);
-  expect_same_sums(lanes, film, "lanes");
-  return expect_same_sums(cpu, film, "one path at a time");
+  EXPECT_EQ(cpu.sums.size(), film.sums.size());
+  const size_t channels = film.channels.size();
+  size_t mismatches = 0, lit = 0;
+  for (size_t i = 0; i < std::min(cpu.sums.size(), film.sums.size()); ++i) {
+    if (i % channels == 0 && (film.sums[i] || film.sums[i + 1] || film.sums[i + 2])) ++lit;
+    if (cpu.sums[i] == film.sums[i]) continue;
+    if (++mismatches <= 5) {
+      ADD_FAILURE() << "pixel " << i / channels << " channel " << film.channels[i % channels] << ": C++ "
+                    << cpu.sums[i] << ", kernel " << film.sums[i];
+    }
+  }
+  EXPECT_EQ(mismatches, 0u) << "of " << cpu.sums.size() << " film sums";
+  return lit;
 }
 
 }  // namespace

@@ -117,9 +117,6 @@ void add_frame_options(CLI::App& app, FrameOptions& o) {
                  "Debug: traversal short-stack entries (KD_SHORT_STACK_SIZE; 0: kernel default 8)")
       ->capture_default_str();
   app.add_flag("--wavefront", o.wavefront, "Use the wavefront kernels instead of the (faster) megakernel");
-  app.add_flag("--lanes", o.lanes,
-               "With --device host: run paths in packets of 8, each bounce's sample values hashed for the "
-               "packet at once (the same image)");
 
   defaults->group(callers_group);
 }
@@ -166,7 +163,6 @@ Frame resolve_frame(const FrameOptions& o, EnvironmentCache& environments) {
   if (o.device.device == kdray::kHostDevice && (o.device.local_size || o.device.short_stack_size || o.wavefront)) {
     throw UsageError("--local-size, --stack-size and --wavefront are for OpenCL devices, not --device host");
   }
-  if (o.lanes && o.device.device != kdray::kHostDevice) throw UsageError("--lanes is for --device host");
   if (o.output.empty()) throw UsageError("-o OUTPUT is required");
   if (!kdray::is_supported_image_path(o.output)) throw UsageError("-o " + o.output + ": use .exr, .png or .jpg");
   Frame frame{o.output, o.settings, o.device, 0};
@@ -174,7 +170,6 @@ Frame resolve_frame(const FrameOptions& o, EnvironmentCache& environments) {
   apply_aovs(o, s);
   apply_camera(o, s);
   if (o.wavefront) s.form = kdray::RenderForm::Wavefront;
-  if (o.lanes) s.form = kdray::RenderForm::Lanes;
   s.sampler = *kdray::parse_sampler(o.sampler);
   s.environment = environments.get(o, &frame.environment_seconds);
   s.default_light = !o.no_default_light;

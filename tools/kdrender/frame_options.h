@@ -28,7 +28,7 @@ struct FrameOptions {
   float fov = 0;
   std::string env_image, env_color;
   float env_strength = 1, env_rotate = 0;
-  bool no_default_light = false, no_mis = false, wavefront = false, lanes = false;
+  bool no_default_light = false, no_mis = false, wavefront = false;
   kdray::RenderSettings settings;  // the plain numbers (size, spp, seed, ...) are written here directly
   kdray::DeviceSelection device;
 };

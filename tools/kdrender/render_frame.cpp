@@ -14,15 +14,6 @@ namespace {
 
 double rate(double count, double seconds) { return seconds > 0 ? count / seconds : 0; }
 
-const char* form_name(kdray::RenderForm form) {
-  switch (form) {
-    case kdray::RenderForm::Wavefront: return "wavefront";
-    case kdray::RenderForm::Lanes: return "lanes";
-    case kdray::RenderForm::Megakernel: break;
-  }
-  return "megakernel";
-}
-
 }  // namespace
 
 FrameResult render_frame(const kdray::Scene& scene, const kdray::KdTree& tree, const Frame& frame,
@@ -58,7 +49,7 @@ nlohmann::json frame_json(const Frame& frame, const FrameResult& result) {
   nlohmann::json report = {{"devices", devices},
           {"output", frame.output},
           {"device", stats.device},
-          {"form", form_name(frame.settings.form)},
+          {"form", frame.settings.form == kdray::RenderForm::Wavefront ? "wavefront" : "megakernel"},
           {"width", film.width},
           {"height", film.height},
           {"spp", film.sample_count},

@@ -19,7 +19,6 @@ namespace kdray {
 enum class RenderForm {
   Megakernel,  // one kernel runs whole paths (the default: faster on PoCL, bench/LOG.md, "Renderer")
   Wavefront,   // one kernel per path step over a buffer of paths (kept for the comparison)
-  Lanes,       // the host only: packets of paths, a bounce's sample values hashed for all at once
 };
 
 struct RenderSettings {

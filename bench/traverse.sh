@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Traversal benchmark: the same ray files traced by kdray (C++ path and the PoCL kernel) and by
 # Embree 3 (rtcIntersect1, high-quality build, robust mode off), random and camera rays, on the
-# bunny (69k), the dragon (100k) and bunny_sub2 (1.1M). Prints Mrays/s (median of $RUNS runs,
-# the three tracers interleaved in each run), the ratio to Embree, and kdray's per-ray work
-# (inner-node steps, leaves, triangle tests; kdtrace --json). Compiles bench/embree_trace.cpp
-# itself (needs libembree-dev); the project's CMake never builds it.
+# Cornell box (32 triangles), the bunny (69k) and bunny_sub2 (1.1M). Prints Mrays/s (median of
+# $RUNS runs, the three tracers interleaved in each run), the ratio to Embree, and kdray's per-ray
+# work: inner-node steps, leaves, triangle tests (kdtrace --json) and instructions (callgrind over
+# the host build's kd_traverse, one thread, on 20000 rays of the same kind: random rays of seed 1,
+# camera rays at 160x125; "-" without valgrind). Compiles bench/embree_trace.cpp itself (needs
+# libembree-dev); the project's CMake never builds it.
 #   BUILD=build RUNS=3 RAYS=1000000 THREADS=2 bench/traverse.sh
 # BASELINE=other/build adds a "before" kdtrace (another build of kdray) to every run.
 set -euo pipefail
@@ -14,7 +16,7 @@ runs="${RUNS:-3}"
 rays="${RAYS:-1000000}"
 threads="${THREADS:-2}"
 work="${WORK:-${TMPDIR:-/tmp}/kdray-bench-traverse}"
-meshes=(${MESHES:-bunny=bunny/bun_zipper.ply dragon=dragon/dragon_vcg_100k.ply bunny_sub2=large/bunny_sub2.ply})
+meshes=(${MESHES:-cornell=cornell-box/mcguire/CornellBox-Original.obj bunny=bunny/bun_zipper.ply bunny_sub2=large/bunny_sub2.ply})
 mkdir -p "$work"
 embree="$work/embree_trace"
 if [[ ! -x "$embree" || "$ROOT/bench/embree_trace.cpp" -nt "$embree" ]]; then
@@ -25,13 +27,20 @@ fi
 field() { json_field "${@:2}" < "$1"; }
 # median_of VALUES...
 median_of() { printf "%s\n" "$@" | median; }
+# instructions_per_ray SCENE TREE RAYS COUNT: instructions kd_traverse executes per ray (host build).
+instructions_per_ray() {
+  if ! command -v valgrind > /dev/null; then echo "-"; return; fi
+  valgrind --tool=callgrind --callgrind-out-file=/dev/null --toggle-collect='*::kd_traverse(*' \
+    "$KDTRACE" "$1" "$2" --rays "$3" --threads 1 --quiet 2>&1 |
+    awk -v n="$4" '/Collected :/ {printf "%.0f", $NF / n}'
+}
 
 echo "# kdray traversal benchmark: $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')," \
      "L3 $(lscpu | awk -F: '/L3/ {gsub(/^ +/, "", $2); print $2}')"
 echo "# $threads threads; medians of $runs interleaved runs; random rays: $rays, camera rays: 1024x768;" \
      "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
-printf "%-11s %-7s %8s %8s %8s %8s %7s %7s %7s %7s %7s %7s %s\n" mesh rays embree cpu pocl before cpu/E pocl/E before/E \
-  steps leaves tris "variant(pocl)"
+printf "%-11s %-7s %8s %8s %8s %8s %7s %7s %7s %7s %7s %7s %6s %s\n" mesh rays embree cpu pocl before cpu/E pocl/E before/E \
+  steps leaves tris instr "variant(pocl)"
 for entry in "${meshes[@]}"; do
   name="${entry%%=*}"
   scene="$work/$name.kdscene"
@@ -42,6 +51,10 @@ for entry in "${meshes[@]}"; do
     "$KDTRACE" "$scene" "$tree" --generate random --count "$rays" --seed 1 --write-rays "$work/$name.random.rays" > /dev/null
   [[ -f "$work/$name.camera.rays" ]] ||
     "$KDTRACE" "$scene" "$tree" --generate camera --width 1024 --height 768 --write-rays "$work/$name.camera.rays" > /dev/null
+  [[ -f "$work/$name.random.small.rays" ]] ||
+    "$KDTRACE" "$scene" "$tree" --generate random --count 20000 --seed 1 --write-rays "$work/$name.random.small.rays" > /dev/null
+  [[ -f "$work/$name.camera.small.rays" ]] ||
+    "$KDTRACE" "$scene" "$tree" --generate camera --width 160 --height 125 --write-rays "$work/$name.camera.small.rays" > /dev/null
   for kind in random camera; do
     ray_file="$work/$name.$kind.rays"
     e=() c=() p=() b=()
@@ -62,10 +75,11 @@ for entry in "${meshes[@]}"; do
       bm="$(awk -v a="$(median_of "${b[@]}")" 'BEGIN {printf "%.2f", a}')"
       br="$(awk -v a="$bm" -v b="$em" 'BEGIN {printf "%.2f", a / b}')"
     fi
-    printf "%-11s %-7s %8.2f %8.2f %8.2f %8s %7.2f %7.2f %7s %7.1f %7.2f %7.2f %s\n" "$name" "$kind" "$em" "$cm" "$pm" "$bm" \
+    printf "%-11s %-7s %8.2f %8.2f %8.2f %8s %7.2f %7.2f %7s %7.1f %7.2f %7.2f %6s %s\n" "$name" "$kind" "$em" "$cm" "$pm" "$bm" \
       "$(awk -v a="$cm" -v b="$em" 'BEGIN {print a / b}')" "$(awk -v a="$pm" -v b="$em" 'BEGIN {print a / b}')" "$br" \
       "$(field "$work/cpu.json" per_ray inner_steps)" "$(field "$work/cpu.json" per_ray leaves)" \
-      "$(field "$work/cpu.json" per_ray triangle_tests)" "$(field "$work/pocl.json" variant)"
+      "$(field "$work/cpu.json" per_ray triangle_tests)" \
+      "$(instructions_per_ray "$scene" "$tree" "$work/$name.$kind.small.rays" 20000)" "$(field "$work/pocl.json" variant)"
   done
 done
 echo "# load average after: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -285,8 +285,11 @@ KD_INLINE int kd_visit_point(const KdSceneView* scene, const KdRay* ray, float s
 }
 
 /* Hint that a node will be read soon: the far child of a split, read when the near side is
- * done. PoCL's CPU devices compile __builtin_prefetch (OpenCL's prefetch() is a no-op there);
- * the host defines KD_PREFETCH_NODES only for them. */
+ * done, and on the fast path the above child of every inner node visited (it lies after the
+ * whole below subtree, so usually in another cache line; its fetch then starts while the step
+ * still decides which child comes next, which a mispredicted branch otherwise waits for).
+ * PoCL's CPU devices compile __builtin_prefetch (OpenCL's prefetch() is a no-op there); the
+ * host defines KD_PREFETCH_NODES only for them. */
 #if !defined(__OPENCL_VERSION__) || defined(KD_PREFETCH_NODES)
 #define KD_PREFETCH_NODE(address) __builtin_prefetch(address)
 #else
@@ -428,6 +431,7 @@ KD_INLINE int kd_traverse_fast(const KdSceneView* scene, const KdRay* ray, float
       const float t_split = (kd_node_split(node) - ray->org[axis]) * ray->inv_dir[axis];
       const kd_u32 below = node_index + 1u;
       const kd_u32 above = kd_node_far_child(node);
+      KD_PREFETCH_NODE(scene->nodes + above);
       const int down = (descending >> axis) & 1u;
       const kd_u32 first = down ? above : below;
       const kd_u32 second = down ? below : above;

@@ -12,7 +12,7 @@
   GEOMETRY(const KdNode, nodes)                \
   BUFFER(const kd_u32, empty_leaves)           \
   GEOMETRY(const kd_u32, leaf_triangles)       \
-  GEOMETRY(const float, triangle_vertices)     \
+  GEOMETRY(const float, leaf_vertices)         \
   VALUE(float4, bounds_min)                    \
   VALUE(float4, bounds_max)                    \
   BUFFER(const RayRecord, rays)                \

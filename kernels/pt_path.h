@@ -22,7 +22,8 @@
 #define PT_ROULETTE_START 4u
 
 typedef struct PtSceneData {
-  KdSceneView kd;                  /* its triangle_vertices also give the shading positions */
+  KdSceneView kd;
+  KD_GLOBAL const float* triangle_vertices; /* KD_TRIANGLE_FLOATS per triangle: shading positions */
   KD_GLOBAL const kd_u32* indices;  /* 3 per triangle: vertex numbers of normals and uvs */
   KD_GLOBAL const kd_u32* material_ids;
   KD_GLOBAL const PtMaterial* materials;
@@ -46,8 +47,9 @@ typedef struct PtSceneData {
 
 KD_INLINE PtSceneData pt_make_scene(PT_SCENE_ARGS) {
   PtSceneData scene;
-  scene.kd = kd_scene_view(nodes, 0, leaf_triangles, triangle_vertices, params->bounds_min[0], params->bounds_min[1],
+  scene.kd = kd_scene_view(nodes, 0, leaf_triangles, leaf_vertices, params->bounds_min[0], params->bounds_min[1],
                            params->bounds_min[2], params->bounds_max[0], params->bounds_max[1], params->bounds_max[2]);
+  scene.triangle_vertices = triangle_vertices;
   scene.indices = indices;
   /* Every shading buffer is the scene field of its own name. */
 #define PT_SCENE_SKIP(type, name)
@@ -73,9 +75,9 @@ typedef struct PtPath {
 } PtPath;
 KD_STATIC_ASSERT(sizeof(PtPath) == PT_PATH_BYTES, "PT_PATH_BYTES is the size of PtPath");
 
-/* Corner 0, 1 or 2 of a triangle, from the traversal's gathered vertices. */
-KD_INLINE float3 pt_corner(const KdSceneView* kd, uint triangle, uint corner) {
-  return vload3(corner, kd->triangle_vertices + KD_TRIANGLE_FLOATS * triangle);
+/* Corner 0, 1 or 2 of a triangle, from the gathered vertices. */
+KD_INLINE float3 pt_corner(KD_GLOBAL const float* triangle_vertices, uint triangle, uint corner) {
+  return vload3(corner, triangle_vertices + KD_TRIANGLE_FLOATS * triangle);
 }
 
 KD_INLINE RayRecord pt_ray(float3 origin, float3 direction, float tmax) {
@@ -181,9 +183,9 @@ KD_INLINE void pt_next_event(PtPath* path, const PtSceneData* scene, KD_GLOBAL c
   float2 pick_v = pt_path_sample2(path, params, PT_DIM_LIGHT_PICK);
   float u = pick_v.x;
   uint tri = pt_pick_light(scene->lights, params->light_count, &u);
-  float3 q0 = pt_corner(&scene->kd, tri, 0);
-  float3 q1 = pt_corner(&scene->kd, tri, 1);
-  float3 q2 = pt_corner(&scene->kd, tri, 2);
+  float3 q0 = pt_corner(scene->triangle_vertices, tri, 0);
+  float3 q1 = pt_corner(scene->triangle_vertices, tri, 1);
+  float3 q2 = pt_corner(scene->triangle_vertices, tri, 2);
   float3 scaled_normal = kd_cross(q1 - q0, q2 - q0);
   float twice_area = kd_length(scaled_normal);
   float3 light_normal = scaled_normal / twice_area;
@@ -304,9 +306,9 @@ KD_INLINE void pt_path_shade(PtPath* path, const PtSceneData* scene, KD_GLOBAL c
   }
   uint k = path->bounce;
   KD_GLOBAL const kd_u32* idx = scene->indices + 3 * hit.triangle;
-  float3 p0 = pt_corner(&scene->kd, hit.triangle, 0);
-  float3 p1 = pt_corner(&scene->kd, hit.triangle, 1);
-  float3 p2 = pt_corner(&scene->kd, hit.triangle, 2);
+  float3 p0 = pt_corner(scene->triangle_vertices, hit.triangle, 0);
+  float3 p1 = pt_corner(scene->triangle_vertices, hit.triangle, 1);
+  float3 p2 = pt_corner(scene->triangle_vertices, hit.triangle, 2);
   float w0 = 1.0f - hit.u - hit.v;
   float3 p = w0 * p0 + hit.u * p1 + hit.v * p2;
   float3 wo = -path->direction;

@@ -9,7 +9,8 @@ namespace kdray {
 
 struct DeviceGeometry {
   cl::Buffer nodes, leaf_triangles;
-  cl::Buffer triangle_vertices;  // gather_triangle_vertices: what traversal and shading read
+  cl::Buffer leaf_vertices;      // gather_leaf_vertices: what traversal reads
+  cl::Buffer triangle_vertices;  // gather_triangle_vertices: what shading reads
   cl::Buffer indices;            // 3 per triangle: vertex numbers of normals and uvs
 };
 

@@ -98,9 +98,11 @@ void add_emitters(SceneArrays& arrays, const Scene& scene) {
 
 GeometryArrays geometry_arrays(const Scene& scene, const KdTree& tree) {
   GeometryArrays geometry;
+  geometry.gathered_leaf_vertices = gather_leaf_vertices(scene, tree);
   geometry.gathered_vertices = gather_triangle_vertices(scene);
   geometry.nodes = host_array(tree.nodes);
   geometry.leaf_triangles = host_array(tree.leaf_triangles);
+  geometry.leaf_vertices = host_array(geometry.gathered_leaf_vertices);
   geometry.triangle_vertices = host_array(geometry.gathered_vertices);
   geometry.indices = host_array(scene.indices);
   const Vec3& lo = tree.bounds.min;

@@ -34,7 +34,8 @@ struct GeometryArrays {
 #define KD_ARRAY_SKIP(type, name)
   PT_SCENE_BUFFERS(KD_ARRAY_MEMBER, KD_ARRAY_SKIP)
   float bounds_min[3] = {0, 0, 0}, bounds_max[3] = {0, 0, 0};
-  TraversalArray<float> gathered_vertices;  // what triangle_vertices views
+  TraversalArray<float> gathered_leaf_vertices;  // what leaf_vertices views
+  TraversalArray<float> gathered_vertices;       // what triangle_vertices views
 
   GeometryArrays() = default;
   GeometryArrays(GeometryArrays&&) = default;  // a move keeps the views valid, a copy would not

@@ -33,11 +33,15 @@ struct TraceOptions {
   TraversalPath path = TraversalPath::FastWhereSafe;
 };
 
-// The triangle layout traversal reads (KdSceneView.triangle_vertices in kernels/kd_traverse.h):
-// KD_TRIANGLE_FLOATS floats per triangle, its three corners copied from the scene's positions
-// (9 floats, 36 bytes per triangle). PreparedTraversal gathers it once; device code uploads it
-// next to the tree.
+// Each triangle's three corners copied from the scene's positions, KD_TRIANGLE_FLOATS floats
+// (36 bytes) per triangle in triangle order: what shading reads of a hit triangle.
 TraversalArray<float> gather_triangle_vertices(const Scene& scene);
+
+// The corners traversal reads (KdSceneView.leaf_vertices in kernels/kd_traverse.h):
+// KD_TRIANGLE_FLOATS floats per entry of the tree's leaf-triangle array, entry i holding the
+// corners of triangle leaf_triangles[i], so that a leaf's triangles are one contiguous read.
+// PreparedTraversal gathers it once; device code uploads it next to the tree.
+TraversalArray<float> gather_leaf_vertices(const Scene& scene, const KdTree& tree);
 
 // One bit per node of the tree, set for empty leaves (bit n % 32 of word n / 32): derived at
 // load for traversals built with KD_EMPTY_LEAF_BITS (KdSceneView.empty_leaves), which skip
@@ -52,7 +56,7 @@ struct TraversalWork {
   uint64_t rays = 0, inner_steps = 0, leaves = 0, triangle_tests = 0, fast_path_rays = 0, fast_path_restarts = 0;
 };
 
-// A scene and its tree ready for batches of rays: the triangle vertices gathered once, so
+// A scene and its tree ready for batches of rays: the leaf vertices gathered once, so
 // repeated batches (and timings of them) do not pay for it again. Keeps references to both
 // and traces the tree's own arrays.
 class PreparedTraversal {
@@ -76,8 +80,8 @@ class PreparedTraversal {
   detail::TraversalArrays arrays() const;
 
   const KdTree& tree_;  // its node and leaf arrays are traced where they are
-  TraversalArray<float> triangle_vertices_;
-  std::vector<uint32_t> empty_leaves_;  // empty_leaf_bits
+  TraversalArray<float> leaf_vertices_;  // gather_leaf_vertices
+  std::vector<uint32_t> empty_leaves_;    // empty_leaf_bits
 };
 
 // One-batch forms of PreparedTraversal::closest and ::any.

@@ -238,22 +238,6 @@ void Subtree::set_far_child(size_t inner, size_t far_child) {
   nodes[inner].header = static_cast<uint32_t>(far_child) << 2 | (nodes[inner].header & 3u);
 }
 
-void Subtree::append(const Subtree& other) {
-  const uint64_t node_base = nodes.size();
-  const uint64_t leaf_base = leaf_triangles.size();
-  if (node_base + other.nodes.size() > KD_MAX_CHILD_INDEX || leaf_base + other.leaf_triangles.size() > UINT32_MAX)
-    throw Error("", "the tree is too large for 32-bit indices");
-  nodes.reserve(nodes.size() + other.nodes.size());
-  for (KdNode node : other.nodes) {
-    if (kd_node_is_leaf(node))
-      node.payload += static_cast<uint32_t>(leaf_base);
-    else
-      node.header += static_cast<uint32_t>(node_base) << 2;
-    nodes.push_back(node);
-  }
-  leaf_triangles.insert(leaf_triangles.end(), other.leaf_triangles.begin(), other.leaf_triangles.end());
-}
-
 void validate_settings(const BuildSettings& settings) {
   if (!(settings.traversal_cost >= 0.0f) || !std::isfinite(settings.traversal_cost))
     throw Error("", "traversal cost (K_T) must be a finite number >= 0");

@@ -203,9 +203,6 @@ struct Subtree {
     set_far_child(inner, nodes.size());
     build_far();
   }
-  // Appends a subtree built separately, shifting its indices.
-  void append(const Subtree& other);
-
  private:
   // Adds an inner node whose far child is not known yet; returns its index.
   size_t add_inner_node(int axis, float position);

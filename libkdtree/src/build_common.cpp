@@ -21,20 +21,22 @@ struct Polygon {
   int size = 0;
 };
 
-// Keeps the part of `in` with coordinate `axis` >= bound (keep_above) or <= bound.
+// Keeps the part of `in` with coordinate `axis` >= bound (kKeepAbove) or <= bound.
 // Returns false (and leaves `out` alone) when all of `in` is kept: clipping would copy it
-// unchanged, point for point.
-bool clip_polygon(const Polygon& in, int axis, double bound, bool keep_above, Polygon& out) {
+// unchanged, point for point. The side is a template parameter and each point's test is made
+// once: this runs for every straddling triangle of every node.
+template <bool kKeepAbove>
+bool clip_polygon(const Polygon& in, int axis, double bound, Polygon& out) {
+  auto inside = [axis, bound](const double* point) { return kKeepAbove ? point[axis] >= bound : point[axis] <= bound; };
   bool all_inside = true;
-  for (int i = 0; i < in.size; ++i)
-    all_inside = all_inside && (keep_above ? in.points[i][axis] >= bound : in.points[i][axis] <= bound);
+  for (int i = 0; i < in.size; ++i) all_inside &= inside(in.points[i]);
   if (all_inside) return false;
   out.size = 0;
+  bool p_inside = inside(in.points[0]);
   for (int i = 0; i < in.size; ++i) {
     const double* p = in.points[i];
-    const double* q = in.points[(i + 1) % in.size];
-    const bool p_inside = keep_above ? p[axis] >= bound : p[axis] <= bound;
-    const bool q_inside = keep_above ? q[axis] >= bound : q[axis] <= bound;
+    const double* q = in.points[i + 1 == in.size ? 0 : i + 1];
+    const bool q_inside = inside(q);
     if (p_inside) {
       std::copy(p, p + 3, out.points[out.size]);
       ++out.size;
@@ -46,6 +48,7 @@ bool clip_polygon(const Polygon& in, int axis, double bound, bool keep_above, Po
       x[axis] = bound;  // exactly on the plane, whatever the rounding of t
       ++out.size;
     }
+    p_inside = q_inside;
   }
   return true;
 }
@@ -133,8 +136,8 @@ bool triangle_bounds_in_voxel(const Scene& scene, uint32_t triangle, const Box3&
     for (int k = 0; k < 3; ++k) buffers[0].points[corner][k] = p[k];
   }
   for (int k = 0; k < 3; ++k) {
-    if (clip_polygon(buffers[current], k, voxel.min[k], true, buffers[1 - current])) current = 1 - current;
-    if (clip_polygon(buffers[current], k, voxel.max[k], false, buffers[1 - current])) current = 1 - current;
+    if (clip_polygon<true>(buffers[current], k, voxel.min[k], buffers[1 - current])) current = 1 - current;
+    if (clip_polygon<false>(buffers[current], k, voxel.max[k], buffers[1 - current])) current = 1 - current;
     if (buffers[current].size == 0) return false;
   }
   const Polygon& polygon = buffers[current];

@@ -168,8 +168,10 @@ class EventBuilder {
       right_index.resize(n);
     }
     classify(work.events[split.axis].data(), work.events[split.axis].size(), split, sides.data());
-    left.voxel = below_plane(work.voxel, split.axis, split.position);
-    right.voxel = above_plane(work.voxel, split.axis, split.position);
+    const Box3 child_voxels[2] = {below_plane(work.voxel, split.axis, split.position),
+                                  above_plane(work.voxel, split.axis, split.position)};
+    left.voxel = child_voxels[0];
+    right.voxel = child_voxels[1];
     left.depth = right.depth = work.depth + 1;
     for (NodeWork* child : {&left, &right}) {
       child->triangles.clear();
@@ -212,11 +214,10 @@ class EventBuilder {
       } else if (sides[i] == kRightOnly) {
         place(right, right_index, nullptr, i, triangle, parent_bounds);
       } else {
-        Box3 bounds;
-        if (child_bounds(scene_, triangle, parent_bounds, left.voxel, perfect_splits_, bounds))
-          place(left, left_index, fresh_left, i, triangle, bounds);
-        if (child_bounds(scene_, triangle, parent_bounds, right.voxel, perfect_splits_, bounds))
-          place(right, right_index, fresh_right, i, triangle, bounds);
+        const StraddlerBounds straddler =
+            straddler_bounds(scene_, triangle, parent_bounds, child_voxels, split.axis, perfect_splits_);
+        if (straddler.reaches[0]) place(left, left_index, fresh_left, i, triangle, straddler.bounds[0]);
+        if (straddler.reaches[1]) place(right, right_index, fresh_right, i, triangle, straddler.bounds[1]);
       }
     }
 

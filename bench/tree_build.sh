@@ -5,8 +5,11 @@
 # rays for both trees) the inner steps and triangle tests per ray, the traced cost
 # K_T x inner steps + K_I x triangle tests (kdbuild's K_T and K_I) and kdtrace's Mrays/s.
 # Medians of $RUNS runs, --threads 2 for both tools; every command is printed.
-#   BUILD=build RUNS=3 RAYS=1000000 bench/tree_build.sh [MESH...]
+#   BUILD=build RUNS=3 RAYS=1000000 [BASELINE=KDBUILD] bench/tree_build.sh [MESH...]
 # MESH: corpus paths relative to $CORPUS (default: the dragon, bunny_sub2 and dragons_4x4).
+# BASELINE: another kdbuild (an earlier commit's) measured the same way, its builds interleaved
+# run by run with this build's on a shared machine (modes base-binned and base-exact); the last
+# column says whether its tree has the same bytes as this build's in the same mode.
 set -euo pipefail
 . "$(dirname "$0")/common.sh"
 runs="${RUNS:-3}"
@@ -23,20 +26,26 @@ echo "#   kdconvert MESH SCENE --quiet"
 echo "#   /usr/bin/time -v kdbuild SCENE TREE MODE_FLAGS --json --quiet --threads 2"
 echo "#   kdtrace SCENE TREE --generate random --count $rays --seed 1 --write-rays RAYS --json   (once per mesh)"
 echo "#   kdtrace SCENE TREE --rays RAYS --threads 2 --json"
-printf "%-16s %-7s %9s %8s %8s %9s %8s %8s %9s %7s\n" mesh mode process_s build_s peak_MiB sah inner tests traced Mrays/s
+modes=(binned exact)
+if [[ -n "${BASELINE:-}" ]]; then
+  echo "# baseline: $BASELINE (modes base-binned, base-exact), interleaved run by run"
+  modes+=(base-binned base-exact)
+fi
+printf "%-16s %-11s %9s %8s %6s %8s %9s %8s %8s %9s %7s %5s\n" mesh mode process_s build_s cpu_s peak_MiB sah inner tests \
+  traced Mrays/s same
 for mesh in "$@"; do
   name="$(basename "${mesh%.*}")"
   scene="$work/$name.kdscene"
   [[ -f "$scene" ]] || "$KDCONVERT" "$CORPUS/$mesh" "$scene" --quiet > /dev/null
-  for mode in binned exact; do
-    flags=()
-    [[ "$mode" == exact ]] && flags=(--exact)
-    tree="$work/$name.$mode.kdtree"
-    : > "$work/$name.$mode.build.jsonl"
-    : > "$work/$name.$mode.trace.jsonl"
-    for ((run = 0; run < runs; ++run)); do
-      /usr/bin/time -v -o "$work/time.txt" "$KDBUILD" "$scene" "$tree" "${flags[@]}" --json --quiet --threads 2 \
-        > "$work/build.json"
+  for mode in "${modes[@]}"; do : > "$work/$name.$mode.build.jsonl"; done
+  for ((run = 0; run < runs; ++run)); do
+    for mode in "${modes[@]}"; do
+      flags=()
+      [[ "$mode" == *exact ]] && flags=(--exact)
+      kdbuild="$KDBUILD"
+      [[ "$mode" == base-* ]] && kdbuild="$BASELINE"
+      /usr/bin/time -v -o "$work/time.txt" "$kdbuild" "$scene" "$work/$name.$mode.kdtree" "${flags[@]}" --json --quiet \
+        --threads 2 > "$work/build.json"
       /usr/bin/python3 - "$work/build.json" "$work/time.txt" >> "$work/$name.$mode.build.jsonl" <<'PY'
 import json, re, sys
 report = json.load(open(sys.argv[1]))
@@ -50,6 +59,14 @@ report["max_rss_mib"] = int(re.search(r"Maximum resident set size \(kbytes\): (\
 print(json.dumps(report))
 PY
     done
+  done
+  for mode in "${modes[@]}"; do
+    tree="$work/$name.$mode.kdtree"
+    : > "$work/$name.$mode.trace.jsonl"
+    same=-
+    if [[ "$mode" == base-* ]]; then
+      if cmp -s "$tree" "$work/$name.${mode#base-}.kdtree"; then same=yes; else same=no; fi
+    fi
     ray_file="$work/$name.$rays.rays"
     [[ -f "$ray_file" ]] || "$KDTRACE" "$scene" "$tree" --generate random --count "$rays" --seed 1 \
       --write-rays "$ray_file" --json > /dev/null
@@ -57,7 +74,7 @@ PY
       "$KDTRACE" "$scene" "$tree" --rays "$ray_file" --threads 2 --json \
         | /usr/bin/python3 -c 'import json,sys; print(json.dumps(json.load(sys.stdin)))' >> "$work/$name.$mode.trace.jsonl"
     done
-    /usr/bin/python3 - "$name" "$mode" "$work/$name.$mode.build.jsonl" "$work/$name.$mode.trace.jsonl" <<'PY'
+    /usr/bin/python3 - "$name" "$mode" "$work/$name.$mode.build.jsonl" "$work/$name.$mode.trace.jsonl" "$same" <<'PY'
 import json, statistics, sys
 builds = [json.loads(line) for line in open(sys.argv[3]) if line.strip()]
 traces = [json.loads(line) for line in open(sys.argv[4]) if line.strip()]
@@ -66,10 +83,11 @@ settings = builds[0]["build_settings"]
 inner = traces[0]["per_ray"]["inner_steps"]
 tests = traces[0]["per_ray"]["triangle_tests"]
 traced = settings["kt"] * inner + settings["ki"] * tests
-print(f"{sys.argv[1]:<16} {sys.argv[2]:<7} {median(b['process_seconds'] for b in builds):9.2f} "
-      f"{median(b['build_seconds'] for b in builds):8.2f} {median(b['max_rss_mib'] for b in builds):8.0f} "
+print(f"{sys.argv[1]:<16} {sys.argv[2]:<11} {median(b['process_seconds'] for b in builds):9.2f} "
+      f"{median(b['build_seconds'] for b in builds):8.2f} {median(b['build_cpu_seconds'] for b in builds):6.2f} "
+      f"{median(b['max_rss_mib'] for b in builds):8.0f} "
       f"{builds[0]['sah_cost']:9.2f} {inner:8.3f} {tests:8.3f} {traced:9.2f} "
-      f"{median(t['mrays_per_s'] for t in traces):7.3f}")
+      f"{median(t['mrays_per_s'] for t in traces):7.3f} {sys.argv[5]:>5}")
 PY
   done
 done

@@ -171,29 +171,35 @@ class BinnedBuilder {
 
   // Divides the triangles of `node` between its children, keeping their order: a first pass
   // counts each block's triangles per side (clipping straddlers to see which sides they
-  // reach), a second writes them at the offsets those counts give.
+  // reach, and keeping what the clipping gave), a second writes them at the offsets those
+  // counts give.
   void divide(const BinnedNode& node, const SplitChoice& split, BinnedNode& left, BinnedNode& right) const {
     const size_t n = node.triangles.size();
     const size_t blocks = (n + kBlockTriangles - 1) / kBlockTriangles;
-    left.voxel = below_plane(node.voxel, split.axis, split.position);
-    right.voxel = above_plane(node.voxel, split.axis, split.position);
+    const Box3 child_voxels[2] = {below_plane(node.voxel, split.axis, split.position),
+                                  above_plane(node.voxel, split.axis, split.position)};
+    left.voxel = child_voxels[0];
+    right.voxel = child_voxels[1];
     left.depth = right.depth = node.depth + 1;
     const bool perfect_splits = context_.settings.perfect_splits;
     const Scene& scene = context_.scene;
     std::vector<uint8_t> sides(n);
+    std::vector<std::vector<StraddlerBounds>> straddlers(blocks);  // per block, in order
     std::vector<size_t> left_offset(blocks + 1, 0), right_offset(blocks + 1, 0);
     tbb::parallel_for(size_t{0}, blocks, [&](size_t block) {
       size_t to_left = 0, to_right = 0;
       for (size_t i = block * kBlockTriangles; i < std::min(n, (block + 1) * kBlockTriangles); ++i) {
         const Side side = side_of(node.bounds[i], split);
         sides[i] = side;
-        Box3 clipped;
-        to_left += side == kLeftOnly ||
-                   (side == kBothSides &&
-                    child_bounds(scene, node.triangles[i], node.bounds[i], left.voxel, perfect_splits, clipped));
-        to_right += side == kRightOnly ||
-                    (side == kBothSides &&
-                     child_bounds(scene, node.triangles[i], node.bounds[i], right.voxel, perfect_splits, clipped));
+        if (side == kBothSides) {
+          const StraddlerBounds& straddler = straddlers[block].emplace_back(
+              straddler_bounds(scene, node.triangles[i], node.bounds[i], child_voxels, split.axis, perfect_splits));
+          to_left += straddler.reaches[0];
+          to_right += straddler.reaches[1];
+        } else {
+          to_left += side == kLeftOnly;
+          to_right += side == kRightOnly;
+        }
       }
       left_offset[block + 1] = to_left;
       right_offset[block + 1] = to_right;
@@ -209,6 +215,7 @@ class BinnedBuilder {
     }
     tbb::parallel_for(size_t{0}, blocks, [&](size_t block) {
       size_t l = left_offset[block], r = right_offset[block];
+      const StraddlerBounds* straddler = straddlers[block].data();
       for (size_t i = block * kBlockTriangles; i < std::min(n, (block + 1) * kBlockTriangles); ++i) {
         const uint32_t triangle = node.triangles[i];
         auto place = [&](BinnedNode& child, size_t& at, const Box3& bounds) {
@@ -221,11 +228,9 @@ class BinnedBuilder {
         } else if (sides[i] == kRightOnly) {
           place(right, r, node.bounds[i]);
         } else {
-          Box3 clipped;
-          if (child_bounds(scene, triangle, node.bounds[i], left.voxel, perfect_splits, clipped))
-            place(left, l, clipped);
-          if (child_bounds(scene, triangle, node.bounds[i], right.voxel, perfect_splits, clipped))
-            place(right, r, clipped);
+          if (straddler->reaches[0]) place(left, l, straddler->bounds[0]);
+          if (straddler->reaches[1]) place(right, r, straddler->bounds[1]);
+          ++straddler;
         }
       }
     });

@@ -21,20 +21,22 @@ struct Polygon {
   int size = 0;
 };
 
-// Keeps the part of `in` with coordinate `axis` >= bound (keep_above) or <= bound.
+// Keeps the part of `in` with coordinate `axis` >= bound (kKeepAbove) or <= bound.
 // Returns false (and leaves `out` alone) when all of `in` is kept: clipping would copy it
-// unchanged, point for point.
-bool clip_polygon(const Polygon& in, int axis, double bound, bool keep_above, Polygon& out) {
+// unchanged, point for point. The side is a template parameter and each point's test is made
+// once: this runs for every straddling triangle of every node.
+template <bool kKeepAbove>
+bool clip_polygon(const Polygon& in, int axis, double bound, Polygon& out) {
+  auto inside = [axis, bound](const double* point) { return kKeepAbove ? point[axis] >= bound : point[axis] <= bound; };
   bool all_inside = true;
-  for (int i = 0; i < in.size; ++i)
-    all_inside = all_inside && (keep_above ? in.points[i][axis] >= bound : in.points[i][axis] <= bound);
+  for (int i = 0; i < in.size; ++i) all_inside &= inside(in.points[i]);
   if (all_inside) return false;
   out.size = 0;
+  bool p_inside = inside(in.points[0]);
   for (int i = 0; i < in.size; ++i) {
     const double* p = in.points[i];
-    const double* q = in.points[(i + 1) % in.size];
-    const bool p_inside = keep_above ? p[axis] >= bound : p[axis] <= bound;
-    const bool q_inside = keep_above ? q[axis] >= bound : q[axis] <= bound;
+    const double* q = in.points[i + 1 == in.size ? 0 : i + 1];
+    const bool q_inside = inside(q);
     if (p_inside) {
       std::copy(p, p + 3, out.points[out.size]);
       ++out.size;
@@ -46,6 +48,7 @@ bool clip_polygon(const Polygon& in, int axis, double bound, bool keep_above, Po
       x[axis] = bound;  // exactly on the plane, whatever the rounding of t
       ++out.size;
     }
+    p_inside = q_inside;
   }
   return true;
 }
@@ -105,56 +108,132 @@ Box3 above_plane(const Box3& voxel, int axis, float position) {
   return above;
 }
 
-bool triangle_bounds_in_voxel(const Scene& scene, uint32_t triangle, const Box3& voxel, bool perfect_splits,
-                              Box3& out) {
+namespace {
+
+struct Corners {
+  const float* point[3];
+};
+
+Corners corners_of(const Scene& scene, uint32_t triangle) {
+  return Corners{{&vertex(scene, triangle, 0).x, &vertex(scene, triangle, 1).x, &vertex(scene, triangle, 2).x}};
+}
+
+Box3 bounding_box(const Corners& corners) {
   Box3 box;
   for (int k = 0; k < 3; ++k) {
     box.min[k] = INFINITY;
     box.max[k] = -INFINITY;
   }
-  for (int corner = 0; corner < 3; ++corner) {
-    const float* p = &vertex(scene, triangle, corner).x;
+  for (const float* p : corners.point)
     for (int k = 0; k < 3; ++k) {
       box.min[k] = std::min(box.min[k], p[k]);
       box.max[k] = std::max(box.max[k], p[k]);
     }
-  }
+  return box;
+}
+
+bool contains(const Box3& voxel, const Box3& box) {
   bool inside = true;
   for (int k = 0; k < 3; ++k) inside = inside && box.min[k] >= voxel.min[k] && box.max[k] <= voxel.max[k];
-  if (!perfect_splits || inside) return intersect_boxes(box, voxel, out);
+  return inside;
+}
 
-  // Planes that keep the whole polygon are skipped; the current polygon alternates between
-  // the two buffers.
-  Polygon buffers[2];
-  int current = 0;
-  buffers[0].size = 3;
-  for (int corner = 0; corner < 3; ++corner) {
-    const float* p = &vertex(scene, triangle, corner).x;
-    for (int k = 0; k < 3; ++k) buffers[0].points[corner][k] = p[k];
+// A triangle clipped to a voxel's planes axis by axis, x to z, min before max (Sutherland-
+// Hodgman in double). Planes that keep the whole polygon are skipped; the current polygon
+// alternates between the two buffers.
+class ClippedPolygon {
+ public:
+  explicit ClippedPolygon(const Corners& corners) {
+    buffers_[0].size = 3;
+    for (int corner = 0; corner < 3; ++corner)
+      for (int k = 0; k < 3; ++k) buffers_[0].points[corner][k] = corners.point[corner][k];
   }
-  for (int k = 0; k < 3; ++k) {
-    if (clip_polygon(buffers[current], k, voxel.min[k], true, buffers[1 - current])) current = 1 - current;
-    if (clip_polygon(buffers[current], k, voxel.max[k], false, buffers[1 - current])) current = 1 - current;
-    if (buffers[current].size == 0) return false;
+  // A copy of the current polygon only.
+  ClippedPolygon(const ClippedPolygon& other) {
+    const Polygon& polygon = other.buffers_[other.current_];
+    buffers_[0].size = polygon.size;
+    std::copy(&polygon.points[0][0], &polygon.points[0][0] + 3 * polygon.size, &buffers_[0].points[0][0]);
   }
-  const Polygon& polygon = buffers[current];
-  Box3 clipped_box;
-  for (int k = 0; k < 3; ++k) {
-    double lo = polygon.points[0][k], hi = lo;
-    for (int i = 1; i < polygon.size; ++i) {
-      lo = std::min(lo, polygon.points[i][k]);
-      hi = std::max(hi, polygon.points[i][k]);
+  ClippedPolygon& operator=(const ClippedPolygon&) = delete;
+
+  // Clips by the two planes of `axis` of `voxel`; false when nothing is left.
+  bool clip_axis(const Box3& voxel, int axis) {
+    if (clip_polygon<true>(buffers_[current_], axis, voxel.min[axis], buffers_[1 - current_])) current_ = 1 - current_;
+    if (clip_polygon<false>(buffers_[current_], axis, voxel.max[axis], buffers_[1 - current_])) current_ = 1 - current_;
+    return buffers_[current_].size != 0;
+  }
+
+  // The polygon's bounds rounded outwards to float, within `voxel`.
+  bool bounds_in(const Box3& voxel, Box3& out) const {
+    const Polygon& polygon = buffers_[current_];
+    Box3 clipped_box;
+    for (int k = 0; k < 3; ++k) {
+      double lo = polygon.points[0][k], hi = lo;
+      for (int i = 1; i < polygon.size; ++i) {
+        lo = std::min(lo, polygon.points[i][k]);
+        hi = std::max(hi, polygon.points[i][k]);
+      }
+      clipped_box.min[k] = round_down(lo);
+      clipped_box.max[k] = round_up(hi);
     }
-    clipped_box.min[k] = round_down(lo);
-    clipped_box.max[k] = round_up(hi);
+    return intersect_boxes(clipped_box, voxel, out);
   }
-  return intersect_boxes(clipped_box, voxel, out);
+
+ private:
+  Polygon buffers_[2];
+  int current_ = 0;
+};
+
+// The rest of the clipping of `polygon` to `voxel`, from `axis` on.
+bool finish_clipping(ClippedPolygon& polygon, const Box3& voxel, int axis, Box3& out) {
+  for (int k = axis; k < 3; ++k)
+    if (!polygon.clip_axis(voxel, k)) return false;
+  return polygon.bounds_in(voxel, out);
+}
+
+}  // namespace
+
+bool triangle_bounds_in_voxel(const Scene& scene, uint32_t triangle, const Box3& voxel, bool perfect_splits,
+                              Box3& out) {
+  const Corners corners = corners_of(scene, triangle);
+  const Box3 box = bounding_box(corners);
+  if (!perfect_splits || contains(voxel, box)) return intersect_boxes(box, voxel, out);
+  ClippedPolygon polygon(corners);
+  return finish_clipping(polygon, voxel, 0, out);
 }
 
 bool child_bounds(const Scene& scene, uint32_t triangle, const Box3& parent_bounds, const Box3& child_voxel,
                   bool perfect_splits, Box3& out) {
   if (perfect_splits) return triangle_bounds_in_voxel(scene, triangle, child_voxel, true, out);
   return intersect_boxes(parent_bounds, child_voxel, out);
+}
+
+StraddlerBounds straddler_bounds(const Scene& scene, uint32_t triangle, const Box3& parent_bounds,
+                                 const Box3 (&child_voxels)[2], int axis, bool perfect_splits) {
+  StraddlerBounds result{};
+  if (!perfect_splits) {
+    for (int c = 0; c < 2; ++c) result.reaches[c] = intersect_boxes(parent_bounds, child_voxels[c], result.bounds[c]);
+    return result;
+  }
+  const Corners corners = corners_of(scene, triangle);
+  const Box3 box = bounding_box(corners);
+  bool clipped[2];
+  for (int c = 0; c < 2; ++c) {
+    clipped[c] = !contains(child_voxels[c], box);
+    if (!clipped[c]) result.reaches[c] = intersect_boxes(box, child_voxels[c], result.bounds[c]);
+  }
+  if (!clipped[0] && !clipped[1]) return result;
+  // The planes of the axes before `axis` are the same for both voxels, and so is the polygon
+  // they leave.
+  ClippedPolygon shared(corners);
+  for (int k = 0; k < axis; ++k)
+    if (!shared.clip_axis(child_voxels[0], k)) return result;  // reaches stays false where clipped
+  if (clipped[0]) {
+    ClippedPolygon below(shared);
+    result.reaches[0] = finish_clipping(below, child_voxels[0], axis, result.bounds[0]);
+  }
+  if (clipped[1]) result.reaches[1] = finish_clipping(shared, child_voxels[1], axis, result.bounds[1]);
+  return result;
 }
 
 double CostModel::split_cost(double p_left, double p_right, uint64_t n_left, uint64_t n_right) const {
@@ -236,22 +315,6 @@ size_t Subtree::add_inner_node(int axis, float position) {
 void Subtree::set_far_child(size_t inner, size_t far_child) {
   if (far_child > KD_MAX_CHILD_INDEX) throw Error("", "the tree is too large for 30-bit child indices");
   nodes[inner].header = static_cast<uint32_t>(far_child) << 2 | (nodes[inner].header & 3u);
-}
-
-void Subtree::append(const Subtree& other) {
-  const uint64_t node_base = nodes.size();
-  const uint64_t leaf_base = leaf_triangles.size();
-  if (node_base + other.nodes.size() > KD_MAX_CHILD_INDEX || leaf_base + other.leaf_triangles.size() > UINT32_MAX)
-    throw Error("", "the tree is too large for 32-bit indices");
-  nodes.reserve(nodes.size() + other.nodes.size());
-  for (KdNode node : other.nodes) {
-    if (kd_node_is_leaf(node))
-      node.payload += static_cast<uint32_t>(leaf_base);
-    else
-      node.header += static_cast<uint32_t>(node_base) << 2;
-    nodes.push_back(node);
-  }
-  leaf_triangles.insert(leaf_triangles.end(), other.leaf_triangles.begin(), other.leaf_triangles.end());
 }
 
 void validate_settings(const BuildSettings& settings) {

@@ -45,6 +45,16 @@ bool triangle_bounds_in_voxel(const Scene& scene, uint32_t triangle, const Box3&
 bool child_bounds(const Scene& scene, uint32_t triangle, const Box3& parent_bounds, const Box3& child_voxel,
                   bool perfect_splits, Box3& out);
 
+// The bounds of a triangle in both children of a split on `axis`, `child_voxels` below and above
+// it (they differ from the parent voxel only on `axis`): child_bounds for each, with the
+// clipping by the planes of the axes before `axis` done once for both.
+struct StraddlerBounds {
+  bool reaches[2];
+  Box3 bounds[2];
+};
+StraddlerBounds straddler_bounds(const Scene& scene, uint32_t triangle, const Box3& parent_bounds,
+                                 const Box3 (&child_voxels)[2], int axis, bool perfect_splits);
+
 // Seed cost: lambda * (K_T + K_I * (P_L N_L + P_R N_R)), lambda = empty bonus when one side is
 // empty and neither side is the whole voxel.
 struct CostModel {
@@ -203,9 +213,6 @@ struct Subtree {
     set_far_child(inner, nodes.size());
     build_far();
   }
-  // Appends a subtree built separately, shifting its indices.
-  void append(const Subtree& other);
-
  private:
   // Adds an inner node whose far child is not known yet; returns its index.
   size_t add_inner_node(int axis, float position);

@@ -3,6 +3,8 @@
 // thread count.
 #include "build_events.h"
 
+#include "radix_sort.h"
+
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
@@ -47,33 +49,40 @@ inline Event event_of_key(uint64_t key) {
 
 using KeyArray = std::vector<uint64_t, UninitialisedAllocator<uint64_t>>;
 
-// Sorts events by sorting their keys (integer comparisons), unless one is -0.
-template <typename SortKeys, typename SortEvents>
-void sort_events(EventArray& events, KeyArray& keys, SortKeys sort_keys, SortEvents sort_with_comparison) {
+// Below this many events, keys are sorted by comparison: a radix sort's fixed cost (its 2048
+// byte counts) is more than it saves.
+constexpr size_t kRadixSortEvents = 1024;
+
+// Sorts events by sorting their keys (integers, which a radix sort takes), unless one is -0:
+// then by comparison, `sort_with_comparison`.
+template <typename SortEvents>
+void sort_events(EventArray& events, KeyArray& keys, KeyArray& scratch, SortEvents sort_with_comparison) {
   if (!std::all_of(events.begin(), events.end(), has_key)) {
     sort_with_comparison();
     return;
   }
   keys.resize(events.size());
   std::transform(events.begin(), events.end(), keys.begin(), event_key);
-  sort_keys();
+  if (keys.size() < kRadixSortEvents) {
+    std::sort(keys.begin(), keys.end());
+  } else {
+    scratch.resize(keys.size());
+    radix_sort(keys.data(), scratch.data(), keys.size());
+  }
   std::transform(keys.begin(), keys.end(), events.begin(), event_of_key);
 }
 
 // The re-clipped events of one node, on this thread.
 void sort_events(EventArray& events) {
-  thread_local KeyArray keys;
-  sort_events(
-      events, keys, [&] { std::sort(keys.begin(), keys.end()); },
-      [&] { std::sort(events.begin(), events.end()); });
+  thread_local KeyArray keys, scratch;
+  sort_events(events, keys, scratch, [&] { std::sort(events.begin(), events.end()); });
 }
 
-// The events of a large node, in parallel.
-void parallel_sort_events(EventArray& events) {
-  KeyArray keys;
-  sort_events(
-      events, keys, [&] { tbb::parallel_sort(keys.begin(), keys.end()); },
-      [&] { tbb::parallel_sort(events.begin(), events.end()); });
+// The events of one axis of a large node: the axes are sorted in parallel, and so are the
+// events by comparison.
+void sort_large_node_events(EventArray& events) {
+  KeyArray keys, scratch;
+  sort_events(events, keys, scratch, [&] { tbb::parallel_sort(events.begin(), events.end()); });
 }
 
 class EventBuilder {
@@ -168,8 +177,10 @@ class EventBuilder {
       right_index.resize(n);
     }
     classify(work.events[split.axis].data(), work.events[split.axis].size(), split, sides.data());
-    left.voxel = below_plane(work.voxel, split.axis, split.position);
-    right.voxel = above_plane(work.voxel, split.axis, split.position);
+    const Box3 child_voxels[2] = {below_plane(work.voxel, split.axis, split.position),
+                                  above_plane(work.voxel, split.axis, split.position)};
+    left.voxel = child_voxels[0];
+    right.voxel = child_voxels[1];
     left.depth = right.depth = work.depth + 1;
     for (NodeWork* child : {&left, &right}) {
       child->triangles.clear();
@@ -212,11 +223,10 @@ class EventBuilder {
       } else if (sides[i] == kRightOnly) {
         place(right, right_index, nullptr, i, triangle, parent_bounds);
       } else {
-        Box3 bounds;
-        if (child_bounds(scene_, triangle, parent_bounds, left.voxel, perfect_splits_, bounds))
-          place(left, left_index, fresh_left, i, triangle, bounds);
-        if (child_bounds(scene_, triangle, parent_bounds, right.voxel, perfect_splits_, bounds))
-          place(right, right_index, fresh_right, i, triangle, bounds);
+        const StraddlerBounds straddler =
+            straddler_bounds(scene_, triangle, parent_bounds, child_voxels, split.axis, perfect_splits_);
+        if (straddler.reaches[0]) place(left, left_index, fresh_left, i, triangle, straddler.bounds[0]);
+        if (straddler.reaches[1]) place(right, right_index, fresh_right, i, triangle, straddler.bounds[1]);
       }
     }
 
@@ -308,7 +318,7 @@ NodeWork node_with_events(const Box3& voxel, uint32_t depth, std::vector<uint32_
     for (size_t i = 0; i < work.triangles.size(); ++i)
       append_events(events, bounds[i], axis, static_cast<uint32_t>(i));
     if (work.triangles.size() >= kParallelTriangles)
-      parallel_sort_events(events);
+      sort_large_node_events(events);
     else
       sort_events(events);
   };

@@ -1,40 +1,95 @@
 #include "build_pieces.h"
 
+#include <kdray/error.h>
+
+#include <tbb/parallel_for.h>
+
+#include <cstring>
 #include <utility>
+#include <vector>
 
 namespace kdray::detail {
 namespace {
 
-void count_sizes(const Piece& piece, size_t& nodes, size_t& references) {
-  if (piece.axis < 0) {
-    nodes += piece.serial.nodes.size();
-    references += piece.serial.leaf_triangles.size();
-    return;
-  }
-  ++nodes;
-  count_sizes(*piece.below, nodes, references);
-  count_sizes(*piece.above, nodes, references);
-}
+// A piece built by one thread and where its nodes and leaf references go in the joined arrays.
+struct Placement {
+  const Subtree* serial;
+  uint64_t node_base;
+  uint64_t leaf_base;
+};
 
-void append_piece(const Piece& piece, Subtree& out) {
-  if (piece.axis < 0) {
-    out.append(piece.serial);
-    return;
+// Lays the pieces out depth first: the inner nodes of the parallel levels (few), and where each
+// serial piece goes, to be copied in parallel.
+class Layout {
+ public:
+  void place(const Piece& piece) {
+    if (piece.axis < 0) {
+      placements_.push_back({&piece.serial, nodes_, leaves_});
+      nodes_ += piece.serial.nodes.size();
+      leaves_ += piece.serial.leaf_triangles.size();
+      return;
+    }
+    uint32_t bits;
+    std::memcpy(&bits, &piece.position, sizeof bits);
+    const size_t slot = inner_nodes_.size();
+    inner_nodes_.push_back({nodes_++, KdNode{bits, static_cast<uint32_t>(piece.axis)}});
+    place(*piece.below);
+    // Checked before the shift, so that an oversized tree cannot wrap into a valid index.
+    if (nodes_ > KD_MAX_CHILD_INDEX) throw Error("", "the tree is too large for 30-bit child indices");
+    inner_nodes_[slot].node.header |= static_cast<uint32_t>(nodes_) << 2;
+    place(*piece.above);
   }
-  out.add_inner(piece.axis, piece.position, [&] { append_piece(*piece.below, out); },
-                [&] { append_piece(*piece.above, out); });
-}
+
+  uint64_t nodes() const { return nodes_; }
+  uint64_t leaves() const { return leaves_; }
+  const std::vector<Placement>& placements() const { return placements_; }
+
+  void write_inner_nodes(Subtree& out) const {
+    for (const InnerNode& inner : inner_nodes_) out.nodes[inner.index] = inner.node;
+  }
+
+ private:
+  struct InnerNode {
+    uint64_t index;
+    KdNode node;
+  };
+  uint64_t nodes_ = 0, leaves_ = 0;
+  std::vector<Placement> placements_;
+  std::vector<InnerNode> inner_nodes_;
+};
 
 }  // namespace
 
 Subtree flatten(Piece&& root) {
   if (root.axis < 0) return std::move(root.serial);
-  size_t nodes = 0, references = 0;
-  count_sizes(root, nodes, references);
   Subtree out;
-  out.nodes.reserve(nodes);
-  out.leaf_triangles.reserve(references);
-  append_piece(root, out);
+  Layout layout;
+  layout.place(root);
+  if (layout.nodes() > KD_MAX_CHILD_INDEX || layout.leaves() > UINT32_MAX)
+    throw Error("", "the tree is too large for 32-bit indices");
+  out.nodes.resize(layout.nodes());
+  out.leaf_triangles.resize(layout.leaves());
+  layout.write_inner_nodes(out);
+  // Each serial piece's indices are shifted by where it lands; pieces do not overlap, so they
+  // are copied in parallel.
+  const std::vector<Placement>& placements = layout.placements();
+  tbb::parallel_for(size_t{0}, placements.size(), [&](size_t i) {
+    const Placement& placement = placements[i];
+    const Subtree& serial = *placement.serial;
+    KdNode* nodes = out.nodes.data() + placement.node_base;
+    const uint32_t node_shift = static_cast<uint32_t>(placement.node_base) << 2;
+    const uint32_t leaf_shift = static_cast<uint32_t>(placement.leaf_base);
+    for (size_t n = 0; n < serial.nodes.size(); ++n) {
+      KdNode node = serial.nodes[n];
+      if (kd_node_is_leaf(node))
+        node.payload += leaf_shift;
+      else
+        node.header += node_shift;
+      nodes[n] = node;
+    }
+    std::copy(serial.leaf_triangles.begin(), serial.leaf_triangles.end(),
+              out.leaf_triangles.begin() + static_cast<std::ptrdiff_t>(placement.leaf_base));
+  });
   return out;
 }
 

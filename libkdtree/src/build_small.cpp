@@ -66,8 +66,10 @@ class SmallBuilder {
     uint8_t sides[kSmallNodeTriangles];
     std::fill(sides, sides + n, kBothSides);
     classify(node.events[split.axis], node.event_count[split.axis], split, sides);
-    left.voxel = below_plane(node.voxel, split.axis, split.position);
-    right.voxel = above_plane(node.voxel, split.axis, split.position);
+    const Box3 child_voxels[2] = {below_plane(node.voxel, split.axis, split.position),
+                                  above_plane(node.voxel, split.axis, split.position)};
+    left.voxel = child_voxels[0];
+    right.voxel = child_voxels[1];
     left.depth = right.depth = node.depth + 1;
     left.count = right.count = 0;
 
@@ -105,11 +107,10 @@ class SmallBuilder {
       } else if (sides[i] == kRightOnly) {
         place(1, i, node.bounds[i], false);
       } else {
-        Box3 bounds;
+        const StraddlerBounds straddler = straddler_bounds(scene_, node.triangles[i], node.bounds[i], child_voxels,
+                                                           split.axis, parameters_.perfect_splits);
         for (int c = 0; c < 2; ++c)
-          if (child_bounds(scene_, node.triangles[i], node.bounds[i], children[c]->voxel, parameters_.perfect_splits,
-                           bounds))
-            place(c, i, bounds, true);
+          if (straddler.reaches[c]) place(c, i, straddler.bounds[c], true);
       }
     }
 

@@ -1,5 +1,6 @@
 // The SAH builder: degenerate scenes, structure, quality, the reference builder and threads.
 #include "build_common.h"
+#include "radix_sort.h"
 #include "reference_builder.h"
 #include "test_scenes.h"
 
@@ -14,6 +15,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <random>
+#include <vector>
 
 namespace kdray {
 namespace {
@@ -322,6 +325,21 @@ TEST(KdBuild, ExactBuilderKeepsItsTrees) {
   std::string path;
   KDRAY_CORPUS_FILE(path, "dragon/dragon_vcg_23k.ply");
   EXPECT_EQ(tree_fingerprint(build_kdtree(test::mesh_file(path), exact)), 0x4b5f4b325c80f8c7ull);
+}
+
+// Keys that differ in all bytes (eight passes), in only some (the others take no pass; an odd
+// number of passes ends in the scratch buffer) and keys that repeat.
+TEST(KdBuild, RadixSortSortsAsAComparisonSortDoes) {
+  std::mt19937_64 random(7);
+  for (uint64_t varying : {~uint64_t{0}, uint64_t{0x00ff00ff}, uint64_t{0xff0000ff00ff0000}, uint64_t{0x3}})
+    for (size_t count : {size_t{1}, size_t{2}, size_t{1000}, size_t{5000}}) {
+      std::vector<uint64_t> keys(count), scratch(count);
+      for (uint64_t& key : keys) key = (random() & varying) | (uint64_t{0x1234567890abcdef} & ~varying);
+      std::vector<uint64_t> expected = keys;
+      std::sort(expected.begin(), expected.end());
+      detail::radix_sort(keys.data(), scratch.data(), count);
+      EXPECT_EQ(keys, expected) << count << " keys varying in " << std::hex << varying;
+    }
 }
 
 TEST(KdBuild, ReportsItsPhaseTimes) {

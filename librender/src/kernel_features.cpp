@@ -2,6 +2,8 @@
 // -D options, so that a program holds only the code its scene uses.
 #include "render_internal.h"
 
+#include <kdray/render.h>
+
 #include <string>
 #include <utility>
 

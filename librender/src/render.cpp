@@ -2,6 +2,8 @@
 // features (kernel_features.cpp), uploads the scene and runs sample passes of the megakernel (or
 // the wavefront form) into a fixed-point film; or, for the device "host", runs them with the C++
 // build of the same code (render_host.cpp).
+#include <kdray/render.h>
+
 #include "render_internal.h"
 
 #include <kdray/clock.h>

@@ -2,6 +2,8 @@
 // settings that decide its pixels, so that merging refuses films of different renders.
 #include "render_internal.h"
 
+#include <kdray/render.h>
+
 #include <xxhash.h>
 
 namespace kdray {

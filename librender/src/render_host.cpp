@@ -35,6 +35,7 @@
 #include "render_internal.h"
 
 #include <kdray/clock.h>
+#include <kdray/render.h>
 #include <kdray/threads.h>
 
 #include <kernels/kd_types.h>

@@ -4,7 +4,11 @@
 
 #include "device_scene.h"
 
-#include <kdray/render.h>
+#include <kdray/environment.h>
+#include <kdray/kdtree.h>
+#include <kdray/opencl_device.h>
+#include <kdray/render_settings.h>
+#include <kdray/scene.h>
 
 #include <kernels/pt_types.h>
 

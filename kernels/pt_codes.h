@@ -47,7 +47,8 @@ KD_STATIC_ASSERT(PT_RADIANCE_CHANNELS + PT_AOV_ALBEDO_CHANNELS + PT_AOV_NORMAL_C
  * (librender's kernel_feature_bits picks them). An OpenCL program is built with the defines of its
  * scene's features only, so what a scene lacks is compiled out. The C++ build
  * (librender/src/render_host.cpp) compiles every feature in and reads these bits where a part
- * compiled in would otherwise run without the data it needs (kernels/pt_path.h, PT_USES). */
+ * compiled in would otherwise run without the data it needs (PT_USES: kernels/pt_path.h and the
+ * files it includes). */
 #define PT_FEATURE_EMISSION (1u << 0)
 #define PT_FEATURE_MIRROR (1u << 1)
 #define PT_FEATURE_GLOSSY (1u << 2)

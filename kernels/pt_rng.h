@@ -25,7 +25,7 @@
  *                                         punctual); alpha (cut-out) test
  *     PT_DIM_ENV_U, PT_DIM_ENV_V          environment light sample
  *     pairs 5 to 7                        free for later techniques
- * Light kinds and the environment are read by pt_next_event_any (kernels/pt_path.h), the lobe
+ * Light kinds and the environment are read by pt_next_event_any (kernels/pt_direct_light.h), the lobe
  * choice by the metallic-roughness material; PT_DIM_ALPHA is unread (alpha decisions hash the
  * path and the triangle instead, kernels/pt_material.h, as a path can pass several surfaces in
  * one bounce). */

@@ -103,7 +103,7 @@ KD_STATIC_ASSERT(sizeof(PtRenderParams) == 176 && KD_OFFSETOF(PtRenderParams, wi
 #define PT_USES(params, bit) 1
 #endif
 
-/* Bytes of one PtPath (kernels/pt_path.h, checked there): the host sizes wavefront buffers by it. */
+/* Bytes of one PtPath (kernels/pt_path_state.h, checked there): the host sizes wavefront buffers by it. */
 #define PT_PATH_BYTES 176
 
 #endif /* PT_TYPES_H */

@@ -1,14 +1,11 @@
-// device_build_options and gpu_kernel_builds (kdray/kernel_builds.h).
 #include <kdray/kernel_builds.h>
+
+#include <kdray/device_build_options.h>
 #include <kdray/trace_opencl.h>
 
 #include <CL/cl.h>
 
 namespace kdray {
-
-std::string device_build_options(uint64_t single_fp_config) {
-  return single_fp_config & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT ? "-cl-fp32-correctly-rounded-divide-sqrt" : "";
-}
 
 std::vector<KernelBuild> gpu_kernel_builds(const Scene& scene, const RenderSettings& settings) {
   const std::string device_options = " " + device_build_options(CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT);

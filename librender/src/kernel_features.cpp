@@ -2,12 +2,15 @@
 // -D options, so that a program holds only the code its scene uses.
 #include "render_internal.h"
 
+#include <kdray/render.h>
+
 #include <string>
 #include <utility>
 
 namespace kdray {
 
-uint32_t kernel_feature_bits(const Scene& scene, const RenderSettings& settings) {
+uint32_t kernel_feature_bits(const Scene& scene, const RenderSettings& settings, const Camera& camera,
+                             const Environment* environment) {
   uint32_t bits = 0;
   const bool uvs = !scene.uvs.empty();
   bool textures = false;
@@ -26,14 +29,14 @@ uint32_t kernel_feature_bits(const Scene& scene, const RenderSettings& settings)
   if (textures) bits |= PT_FEATURE_TEXTURES;
   if (!scene.emissive_triangles.empty()) bits |= PT_FEATURE_EMISSION;
   if (!scene.normals.empty()) bits |= PT_FEATURE_NORMALS;
-  if (render_environment(scene, settings)) bits |= PT_FEATURE_ENVIRONMENT;
+  if (environment) bits |= PT_FEATURE_ENVIRONMENT;
   if (!scene.lights.empty()) bits |= PT_FEATURE_PUNCTUAL;
   if (!settings.mis) bits |= PT_FEATURE_MIS_OFF;
-  if (render_camera(scene, settings).projection == Projection::Orthographic) bits |= PT_FEATURE_ORTHOGRAPHIC;
+  if (camera.projection == Projection::Orthographic) bits |= PT_FEATURE_ORTHOGRAPHIC;
   return bits;
 }
 
-std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device) {
+std::string kernel_feature_options(uint32_t feature_bits, const DeviceSelection& device) {
   static const std::pair<uint32_t, const char*> kDefines[] = {
       {PT_FEATURE_EMISSION, "KD_FEATURE_EMISSION"},
       {PT_FEATURE_MIRROR, "KD_FEATURE_MIRROR"},
@@ -51,12 +54,17 @@ std::string kernel_feature_options(const Scene& scene, const RenderSettings& set
       {PT_FEATURE_MIS_OFF, "KD_MIS_OFF"},
       {PT_FEATURE_ORTHOGRAPHIC, "KD_FEATURE_ORTHOGRAPHIC"},
   };
-  const uint32_t bits = kernel_feature_bits(scene, settings);
   std::string options = "-cl-std=CL1.2";
   for (const auto& [bit, name] : kDefines)
-    if (bits & bit) options += std::string(" -D") + name;
+    if (feature_bits & bit) options += std::string(" -D") + name;
   if (device.short_stack_size) options += " -DKD_SHORT_STACK_SIZE=" + std::to_string(device.short_stack_size);
   return options;
+}
+
+std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device) {
+  const Camera camera = render_camera(scene, settings);
+  const uint32_t bits = kernel_feature_bits(scene, settings, camera, render_environment(scene, settings).get());
+  return kernel_feature_options(bits, device);
 }
 
 }  // namespace kdray

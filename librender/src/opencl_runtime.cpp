@@ -1,8 +1,8 @@
 // OpenCL devices, contexts and launches (see opencl_runtime.h).
 #include "opencl_runtime.h"
 
+#include <kdray/device_build_options.h>
 #include <kdray/error.h>
-#include <kdray/kernel_builds.h>
 
 #include <algorithm>
 #include <cstdlib>

@@ -1,7 +1,9 @@
-// The render driver: resolves the view (render_view.cpp), builds the program for the scene's
-// features (kernel_features.cpp), uploads the scene and runs sample passes of the megakernel (or
-// the wavefront form) into a fixed-point film; or, for the device "host", runs them with the C++
-// build of the same code (render_host.cpp).
+// The render driver: resolves the render once (the view, render_view.cpp; the environment; the
+// kernel's feature bits, kernel_features.cpp), builds the program for those features, uploads the
+// scene and runs sample passes of the megakernel (or the wavefront form) into a fixed-point film;
+// or, for the device "host", runs them with the C++ build of the same code (render_host.cpp).
+#include <kdray/render.h>
+
 #include "render_internal.h"
 
 #include <kdray/clock.h>
@@ -72,9 +74,6 @@ std::vector<std::string> film_channel_names(const RenderSettings& s) {
   return names;
 }
 
-
-
-
 std::shared_ptr<const Environment> render_environment(const Scene& scene, const RenderSettings& settings) {
   if (settings.environment) return settings.environment;
   if (!settings.default_light || !scene.emissive_triangles.empty() || !scene.lights.empty()) return nullptr;
@@ -83,11 +82,19 @@ std::shared_ptr<const Environment> render_environment(const Scene& scene, const 
   return white;
 }
 
+ResolvedRender resolve_render(const Scene& scene, const RenderSettings& requested) {
+  ResolvedRender render;
+  render.settings = resolve_view(scene, requested);
+  check_settings(render.settings);
+  render.environment = render_environment(scene, render.settings);
+  render.feature_bits = kernel_feature_bits(scene, render.settings, render.camera(), render.environment.get());
+  return render;
+}
 
-PtRenderParams render_params(const Scene& scene, const RenderSettings& settings, const Camera& camera,
-                             const SceneArrays& arrays, const Environment* environment) {
+PtRenderParams render_params(const ResolvedRender& render, const SceneArrays& arrays) {
+  const RenderSettings& settings = render.settings;
   PtRenderParams params{};
-  set_camera(params, camera, settings.width, settings.height);
+  set_camera(params, render.camera(), settings.width, settings.height);
   for (int axis = 0; axis < 3; ++axis) {
     params.bounds_min[axis] = arrays.geometry.bounds_min[axis];
     params.bounds_max[axis] = arrays.geometry.bounds_max[axis];
@@ -99,10 +106,10 @@ PtRenderParams render_params(const Scene& scene, const RenderSettings& settings,
   params.sampler = static_cast<uint32_t>(settings.sampler);
   params.light_count = arrays.light_count;
   params.light_area_pdf_scale = arrays.light_area_pdf_scale;
-  set_light_selection(params, arrays, environment);
+  set_light_selection(params, arrays, render.environment.get());
   params.aov_mask = aov_mask(settings);
   params.film_channels = film_channel_count(settings);
-  params.features = kernel_feature_bits(scene, settings);
+  params.features = render.feature_bits;
   return params;
 }
 
@@ -144,24 +151,23 @@ class DeviceRender : public RenderWorker {
   cl::Kernel megakernel;  // null in the wavefront form
 };
 
-std::unique_ptr<RenderWorker> prepare_device(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
-                                             const DeviceSelection& device, const Camera& camera,
-                                             const std::shared_ptr<const Environment>& environment) {
+std::unique_ptr<RenderWorker> prepare_device(const Scene& scene, const KdTree& tree, const ResolvedRender& render,
+                                             const DeviceSelection& device) {
+  const RenderSettings& settings = render.settings;
   cl::Runtime& runtime = cl::runtime_for(device);
   RenderStats stats;
   stats.device = runtime.info().name;
-  stats.kernel_options = kernel_feature_options(scene, settings, device);
-  stats.default_light = environment && !settings.environment;
+  stats.kernel_options = kernel_feature_options(render.feature_bits, device);
+  stats.default_light = render.environment && !settings.environment;
   const bool wavefront = settings.form == RenderForm::Wavefront;
   cl::ProgramBuild build = runtime.program(wavefront ? "pt_wavefront.cl" : "pt_megakernel.cl", stats.kernel_options);
   stats.build_seconds = build.seconds;
   stats.build_source = build.source;
 
   auto upload_start = Clock::now();
-  const SceneArrays arrays = scene_arrays(scene, tree, environment.get());
-  auto device_render = std::make_unique<DeviceRender>(
-      runtime, upload_scene(runtime, arrays), render_params(scene, settings, camera, arrays, environment.get()),
-      build.program);
+  const SceneArrays arrays = scene_arrays(scene, tree, render.environment.get());
+  auto device_render =
+      std::make_unique<DeviceRender>(runtime, upload_scene(runtime, arrays), render_params(render, arrays), build.program);
   RenderJob& job = device_render->job;
   const size_t film_bytes = size_t(settings.width) * settings.height * job.params.film_channels * sizeof(int64_t);
   job.params_buffer = runtime.buffer(sizeof job.params, &job.params);
@@ -294,18 +300,16 @@ std::string join_distinct(const std::vector<std::string>& items, const char* sep
 
 Film render(const Scene& scene, const KdTree& tree, const RenderSettings& requested, const DeviceSelection& device,
             RenderStats* stats_out, const RenderProgress& progress) {
-  const RenderSettings settings = resolve_view(scene, requested);
-  check_settings(settings);
-  const Camera& camera = *settings.camera;
-  const std::shared_ptr<const Environment> environment = render_environment(scene, settings);
+  const ResolvedRender resolved = resolve_render(scene, requested);
+  const RenderSettings& settings = resolved.settings;
   std::vector<std::unique_ptr<RenderWorker>> devices;
   if (device.device == kHostDevice) {
     if (settings.form == RenderForm::Wavefront) throw Error("", "the wavefront form is for OpenCL devices, not the host");
-    devices.push_back(prepare_host(scene, tree, settings, device, camera, environment));
+    devices.push_back(prepare_host(scene, tree, resolved, device));
   } else {
     if (device.threads) throw Error("", "threads are for the host device; OpenCL devices run their own");
     for (const DeviceSelection& selection : split_device_selection(device)) {
-      devices.push_back(prepare_device(scene, tree, settings, selection, camera, environment));
+      devices.push_back(prepare_device(scene, tree, resolved, selection));
     }
   }
 
@@ -362,7 +366,7 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& reques
   film.sampler = settings.sampler;
   film.scene_hash = scene.content_hash;
   film.tree_hash = tree_content_hash(tree);
-  film.settings_hash = render_settings_hash(scene, settings);
+  film.settings_hash = render_settings_hash(settings, resolved.camera(), resolved.environment.get());
   film.render_seconds = stats.render_seconds;
   if (stats_out) *stats_out = stats;
   return film;

@@ -2,6 +2,8 @@
 // settings that decide its pixels, so that merging refuses films of different renders.
 #include "render_internal.h"
 
+#include <kdray/render.h>
+
 #include <xxhash.h>
 
 namespace kdray {
@@ -16,11 +18,10 @@ uint64_t tree_content_hash(const KdTree& tree) {
   return hash;
 }
 
-uint64_t render_settings_hash(const Scene& scene, const RenderSettings& settings) {
+uint64_t render_settings_hash(const RenderSettings& settings, const Camera& camera, const Environment* environment) {
   XXH3_state_t* state = XXH3_createState();
   XXH3_64bits_reset(state);
   auto add = [&](const void* data, size_t bytes) { XXH3_64bits_update(state, data, bytes); };
-  const Camera camera = render_camera(scene, settings);
   const float camera_values[] = {camera.position.x, camera.position.y, camera.position.z, camera.target.x,
                                  camera.target.y,   camera.target.z,   camera.up.x,       camera.up.y,
                                  camera.up.z,       camera.vertical_fov_degrees};
@@ -28,7 +29,6 @@ uint64_t render_settings_hash(const Scene& scene, const RenderSettings& settings
   // Perspective views hash as they did before cameras had a projection, so their films still merge.
   if (camera.projection == Projection::Orthographic)
     add(&camera.orthographic_half_height, sizeof camera.orthographic_half_height);
-  const std::shared_ptr<const Environment> environment = render_environment(scene, settings);
   const uint32_t switches[] = {environment ? 1u : 0u, settings.mis ? 1u : 0u};
   add(switches, sizeof switches);
   if (environment) {
@@ -41,6 +41,10 @@ uint64_t render_settings_hash(const Scene& scene, const RenderSettings& settings
   uint64_t hash = XXH3_64bits_digest(state);
   XXH3_freeState(state);
   return hash;
+}
+
+uint64_t render_settings_hash(const Scene& scene, const RenderSettings& settings) {
+  return render_settings_hash(settings, render_camera(scene, settings), render_environment(scene, settings).get());
 }
 
 }  // namespace kdray

@@ -35,6 +35,7 @@
 #include "render_internal.h"
 
 #include <kdray/clock.h>
+#include <kdray/render.h>
 #include <kdray/threads.h>
 
 #include <kernels/kd_types.h>
@@ -111,20 +112,19 @@ class HostRender : public RenderWorker {
 
 }  // namespace
 
-std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
-                                           const DeviceSelection& device, const Camera& camera,
-                                           const std::shared_ptr<const Environment>& environment) {
+std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tree, const ResolvedRender& render,
+                                           const DeviceSelection& device) {
   const auto start = std::chrono::steady_clock::now();
-  SceneArrays arrays = scene_arrays(scene, tree, environment.get());
-  const PtRenderParams params = render_params(scene, settings, camera, arrays, environment.get());
+  SceneArrays arrays = scene_arrays(scene, tree, render.environment.get());
+  const PtRenderParams params = render_params(render, arrays);
   auto host = std::make_unique<HostRender>(std::move(arrays), params, device.threads);
   RenderStats& stats = host->stats;
   stats.device = kHostDevice;
   // Every feature compiled in; the scene's own, as an OpenCL build would name them, gate them.
-  const std::string options = kernel_feature_options(scene, settings, DeviceSelection{});
+  const std::string options = kernel_feature_options(render.feature_bits, DeviceSelection{});
   const size_t defines = options.find(" -D");
   stats.kernel_options = "-DKD_ALL_FEATURES" + (defines == std::string::npos ? "" : options.substr(defines));
-  stats.default_light = environment && !settings.environment;
+  stats.default_light = render.environment && !render.settings.environment;
   stats.build_source = "built in";
   stats.threads = host->threads();
   stats.upload_seconds = seconds_since(start);

@@ -4,12 +4,17 @@
 
 #include "device_scene.h"
 
-#include <kdray/render.h>
+#include <kdray/environment.h>
+#include <kdray/kdtree.h>
+#include <kdray/opencl_device.h>
+#include <kdray/render_settings.h>
+#include <kdray/scene.h>
 
 #include <kernels/pt_types.h>
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace kdray {
@@ -28,21 +33,35 @@ class RenderWorker {
   int device_index = -1;  // in list_devices(); -1 for the host
 };
 
+// What a render derives from the scene and its settings, resolved once (resolve_render,
+// render.cpp) and handed to every worker.
+struct ResolvedRender {
+  RenderSettings settings;  // the camera and the image size filled in (resolve_view), checked
+  std::shared_ptr<const Environment> environment;  // render_environment: null when none lights it
+  uint32_t feature_bits = 0;                       // kernel_feature_bits
+
+  const Camera& camera() const { return *settings.camera; }
+};
+ResolvedRender resolve_render(const Scene& scene, const RenderSettings& requested);
+
 // The PT_FEATURE_* bits of a render (kernels/pt_codes.h): what its kernel is built with
-// (kernel_features.cpp).
-uint32_t kernel_feature_bits(const Scene& scene, const RenderSettings& settings);
+// (kernel_features.cpp), and their build options on `device`.
+uint32_t kernel_feature_bits(const Scene& scene, const RenderSettings& settings, const Camera& camera,
+                             const Environment* environment);
+std::string kernel_feature_options(uint32_t feature_bits, const DeviceSelection& device);
 
 // The camera as the kernels' parameters for a width x height image (render_view.cpp).
 void set_camera(PtRenderParams& params, const Camera& camera, uint32_t width, uint32_t height);
 
 // The kernels' parameters of a render, but for the sample range (set per pass).
-PtRenderParams render_params(const Scene& scene, const RenderSettings& settings, const Camera& camera,
-                             const SceneArrays& arrays, const Environment* environment);
+PtRenderParams render_params(const ResolvedRender& render, const SceneArrays& arrays);
+
+// Film::settings_hash of a resolved render (render_hashes.cpp; render_settings_hash in render.h).
+uint64_t render_settings_hash(const RenderSettings& settings, const Camera& camera, const Environment* environment);
 
 // The host worker: the C++ build of kernels/pt_path.h on the CPU (render_host.cpp).
-std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tree, const RenderSettings& settings,
-                                           const DeviceSelection& device, const Camera& camera,
-                                           const std::shared_ptr<const Environment>& environment);
+std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tree, const ResolvedRender& render,
+                                           const DeviceSelection& device);
 
 // The state one render keeps on an OpenCL device.
 struct RenderJob {

@@ -3,6 +3,7 @@
 #include "render_internal.h"
 
 #include <kdray/error.h>
+#include <kdray/render.h>
 
 #include <algorithm>
 #include <cmath>

@@ -16,9 +16,6 @@ struct EncodedParts {
 };
 EncodedParts encode_parts(const Scene& scene);
 
-// The content hash of a scene whose structured parts are already encoded (scene.cpp).
-uint64_t content_hash(const Scene& scene, const EncodedParts& parts);
-
 std::string encode_materials(const std::vector<Material>& materials);
 std::string encode_cameras(const std::vector<Camera>& cameras);
 std::string encode_textures(const std::vector<Texture>& textures);

@@ -5,6 +5,7 @@
 #include <kdray/tangents.h>
 
 #include "scene_encoding.h"
+#include "scene_hash.h"
 
 #include <algorithm>
 #include <cmath>

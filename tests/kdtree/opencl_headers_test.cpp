@@ -4,7 +4,7 @@
 #include "test_scenes.h"
 
 #include <kdray/kdtree.h>
-#include <kdray/kernel_builds.h>
+#include <kdray/device_build_options.h>
 #include <kdray/ray_sets.h>
 #include <kdray/traverse.h>
 

@@ -10,11 +10,6 @@
 
 namespace kdray {
 
-// What the runtime adds to every program on a device with this CL_DEVICE_SINGLE_FP_CONFIG:
-// correctly rounded float division and sqrt where the device offers them, so the kernels'
-// arithmetic is the C++ build's (kernels/kd_math.h).
-std::string device_build_options(uint64_t single_fp_config);
-
 struct KernelBuild {
   std::string name;        // megakernel, wavefront, trace-short-stack, trace-full-stack
   std::string entry_file;  // in kernels/

@@ -26,7 +26,7 @@ struct TraceOpenClStats {
 unsigned kernel_stack_size(TraversalStack stack);
 
 // kd_trace.cl's build options and its variant's name (TraceOpenClStats::kernel_variant) for a
-// GPU or a CPU device, before the device's own (device_build_options, kernel_builds.h).
+// GPU or a CPU device, before the device's own (device_build_options.h).
 struct TraceKernelBuild {
   std::string options;
   std::string variant;

@@ -65,7 +65,7 @@ typedef struct PtPath {
 } PtPath;
 KD_STATIC_ASSERT(sizeof(PtPath) == PT_PATH_BYTES, "PT_PATH_BYTES is the size of PtPath");
 
-/* Corner 0, 1 or 2 of a triangle, from the traversal's gathered vertices. */
+/* Corner 0, 1 or 2 of a triangle, from the per-triangle copy of its corners. */
 KD_INLINE float3 pt_corner(KD_GLOBAL const float* triangle_vertices, uint triangle, uint corner) {
   return vload3(corner, triangle_vertices + KD_TRIANGLE_FLOATS * triangle);
 }

@@ -40,7 +40,7 @@ const TraversalVariant& traversal_full_stack();
 const TraversalVariant& traversal_robust_short_stack();
 
 // Closest hits with the short stack, like traversal_short_stack().closest, adding the work
-// done (kernels/kd_traverse.h's counters): a build of its own, so the timed ones count nothing.
+// done (kernels/kd_scene_view.h's counters): a build of its own, so the timed ones count nothing.
 struct TraversalCounts {
   uint64_t inner_steps = 0, leaves = 0, triangle_tests = 0, fast_path_rays = 0, fast_path_restarts = 0;
 };

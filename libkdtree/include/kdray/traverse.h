@@ -22,7 +22,7 @@ enum class TraversalStack {
   Full,    // KD_MAX_TREE_DEPTH entries: never restarts
 };
 
-// Which rays take kernels/kd_traverse.h's fast path: every one that gives the robust
+// Which rays take the traversal's fast path (kernels/kd_traverse_fast.h): every one that gives the robust
 // traversal's hits there (the default), or none (KD_TRAVERSAL_ROBUST_ONLY, the short stack only):
 // the robust traversal alone, to compare the two.
 enum class TraversalPath { FastWhereSafe, Robust };
@@ -37,7 +37,7 @@ struct TraceOptions {
 // (36 bytes) per triangle in triangle order: what shading reads of a hit triangle.
 TraversalArray<float> gather_triangle_vertices(const Scene& scene);
 
-// The corners traversal reads (KdSceneView.leaf_vertices in kernels/kd_traverse.h):
+// The corners traversal reads (KdSceneView.leaf_vertices in kernels/kd_scene_view.h):
 // KD_TRIANGLE_FLOATS floats per entry of the tree's leaf-triangle array, entry i holding the
 // corners of triangle leaf_triangles[i], so that a leaf's triangles are one contiguous read.
 // PreparedTraversal gathers it once; device code uploads it next to the tree.

@@ -1,0 +1,201 @@
+// Triangles clipped to voxels for the builders: the bounds of a triangle's part inside a voxel
+// (build_common.h declares them).
+#include "build_common.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace kdray::detail {
+namespace {
+
+// Largest polygon Sutherland-Hodgman can produce from a triangle and six planes: 3 + 6.
+constexpr int kMaxClipVertices = 9;
+
+struct Polygon {
+  double points[kMaxClipVertices + 1][3];
+  int size = 0;
+};
+
+// Keeps the part of `in` with coordinate `axis` >= bound (kKeepAbove) or <= bound.
+// Returns false (and leaves `out` alone) when all of `in` is kept: clipping would copy it
+// unchanged, point for point. The side is a template parameter and each point's test is made
+// once: this runs for every straddling triangle of every node.
+template <bool kKeepAbove>
+bool clip_polygon(const Polygon& in, int axis, double bound, Polygon& out) {
+  auto inside = [axis, bound](const double* point) { return kKeepAbove ? point[axis] >= bound : point[axis] <= bound; };
+  bool all_inside = true;
+  for (int i = 0; i < in.size; ++i) all_inside &= inside(in.points[i]);
+  if (all_inside) return false;
+  out.size = 0;
+  bool p_inside = inside(in.points[0]);
+  for (int i = 0; i < in.size; ++i) {
+    const double* p = in.points[i];
+    const double* q = in.points[i + 1 == in.size ? 0 : i + 1];
+    const bool q_inside = inside(q);
+    if (p_inside) {
+      std::copy(p, p + 3, out.points[out.size]);
+      ++out.size;
+    }
+    if (p_inside != q_inside) {
+      const double t = (bound - p[axis]) / (q[axis] - p[axis]);
+      double* x = out.points[out.size];
+      for (int k = 0; k < 3; ++k) x[k] = p[k] + t * (q[k] - p[k]);
+      x[axis] = bound;  // exactly on the plane, whatever the rounding of t
+      ++out.size;
+    }
+    p_inside = q_inside;
+  }
+  return true;
+}
+
+float round_down(double value) {
+  float rounded = static_cast<float>(value);
+  return static_cast<double>(rounded) > value ? std::nextafter(rounded, -INFINITY) : rounded;
+}
+float round_up(double value) {
+  float rounded = static_cast<float>(value);
+  return static_cast<double>(rounded) < value ? std::nextafter(rounded, INFINITY) : rounded;
+}
+
+bool intersect_boxes(const Box3& a, const Box3& b, Box3& out) {
+  for (int k = 0; k < 3; ++k) {
+    out.min[k] = std::max(a.min[k], b.min[k]);
+    out.max[k] = std::min(a.max[k], b.max[k]);
+    if (out.min[k] > out.max[k]) return false;
+  }
+  return true;
+}
+
+const Vec3& vertex(const Scene& scene, uint32_t triangle, int corner) {
+  return scene.positions[scene.indices[3 * static_cast<size_t>(triangle) + corner]];
+}
+
+
+struct Corners {
+  const float* point[3];
+};
+
+Corners corners_of(const Scene& scene, uint32_t triangle) {
+  return Corners{{&vertex(scene, triangle, 0).x, &vertex(scene, triangle, 1).x, &vertex(scene, triangle, 2).x}};
+}
+
+Box3 bounding_box(const Corners& corners) {
+  Box3 box;
+  for (int k = 0; k < 3; ++k) {
+    box.min[k] = INFINITY;
+    box.max[k] = -INFINITY;
+  }
+  for (const float* p : corners.point)
+    for (int k = 0; k < 3; ++k) {
+      box.min[k] = std::min(box.min[k], p[k]);
+      box.max[k] = std::max(box.max[k], p[k]);
+    }
+  return box;
+}
+
+bool contains(const Box3& voxel, const Box3& box) {
+  bool inside = true;
+  for (int k = 0; k < 3; ++k) inside = inside && box.min[k] >= voxel.min[k] && box.max[k] <= voxel.max[k];
+  return inside;
+}
+
+// A triangle clipped to a voxel's planes axis by axis, x to z, min before max (Sutherland-
+// Hodgman in double). Planes that keep the whole polygon are skipped; the current polygon
+// alternates between the two buffers.
+class ClippedPolygon {
+ public:
+  explicit ClippedPolygon(const Corners& corners) {
+    buffers_[0].size = 3;
+    for (int corner = 0; corner < 3; ++corner)
+      for (int k = 0; k < 3; ++k) buffers_[0].points[corner][k] = corners.point[corner][k];
+  }
+  // A copy of the current polygon only.
+  ClippedPolygon(const ClippedPolygon& other) {
+    const Polygon& polygon = other.buffers_[other.current_];
+    buffers_[0].size = polygon.size;
+    std::copy(&polygon.points[0][0], &polygon.points[0][0] + 3 * polygon.size, &buffers_[0].points[0][0]);
+  }
+  ClippedPolygon& operator=(const ClippedPolygon&) = delete;
+
+  // Clips by the two planes of `axis` of `voxel`; false when nothing is left.
+  bool clip_axis(const Box3& voxel, int axis) {
+    if (clip_polygon<true>(buffers_[current_], axis, voxel.min[axis], buffers_[1 - current_])) current_ = 1 - current_;
+    if (clip_polygon<false>(buffers_[current_], axis, voxel.max[axis], buffers_[1 - current_])) current_ = 1 - current_;
+    return buffers_[current_].size != 0;
+  }
+
+  // The polygon's bounds rounded outwards to float, within `voxel`.
+  bool bounds_in(const Box3& voxel, Box3& out) const {
+    const Polygon& polygon = buffers_[current_];
+    Box3 clipped_box;
+    for (int k = 0; k < 3; ++k) {
+      double lo = polygon.points[0][k], hi = lo;
+      for (int i = 1; i < polygon.size; ++i) {
+        lo = std::min(lo, polygon.points[i][k]);
+        hi = std::max(hi, polygon.points[i][k]);
+      }
+      clipped_box.min[k] = round_down(lo);
+      clipped_box.max[k] = round_up(hi);
+    }
+    return intersect_boxes(clipped_box, voxel, out);
+  }
+
+ private:
+  Polygon buffers_[2];
+  int current_ = 0;
+};
+
+// The rest of the clipping of `polygon` to `voxel`, from `axis` on.
+bool finish_clipping(ClippedPolygon& polygon, const Box3& voxel, int axis, Box3& out) {
+  for (int k = axis; k < 3; ++k)
+    if (!polygon.clip_axis(voxel, k)) return false;
+  return polygon.bounds_in(voxel, out);
+}
+
+}  // namespace
+
+bool triangle_bounds_in_voxel(const Scene& scene, uint32_t triangle, const Box3& voxel, bool perfect_splits,
+                              Box3& out) {
+  const Corners corners = corners_of(scene, triangle);
+  const Box3 box = bounding_box(corners);
+  if (!perfect_splits || contains(voxel, box)) return intersect_boxes(box, voxel, out);
+  ClippedPolygon polygon(corners);
+  return finish_clipping(polygon, voxel, 0, out);
+}
+
+bool child_bounds(const Scene& scene, uint32_t triangle, const Box3& parent_bounds, const Box3& child_voxel,
+                  bool perfect_splits, Box3& out) {
+  if (perfect_splits) return triangle_bounds_in_voxel(scene, triangle, child_voxel, true, out);
+  return intersect_boxes(parent_bounds, child_voxel, out);
+}
+
+StraddlerBounds straddler_bounds(const Scene& scene, uint32_t triangle, const Box3& parent_bounds,
+                                 const Box3 (&child_voxels)[2], int axis, bool perfect_splits) {
+  StraddlerBounds result{};
+  if (!perfect_splits) {
+    for (int c = 0; c < 2; ++c) result.reaches[c] = intersect_boxes(parent_bounds, child_voxels[c], result.bounds[c]);
+    return result;
+  }
+  const Corners corners = corners_of(scene, triangle);
+  const Box3 box = bounding_box(corners);
+  bool clipped[2];
+  for (int c = 0; c < 2; ++c) {
+    clipped[c] = !contains(child_voxels[c], box);
+    if (!clipped[c]) result.reaches[c] = intersect_boxes(box, child_voxels[c], result.bounds[c]);
+  }
+  if (!clipped[0] && !clipped[1]) return result;
+  // The planes of the axes before `axis` are the same for both voxels, and so is the polygon
+  // they leave.
+  ClippedPolygon shared(corners);
+  for (int k = 0; k < axis; ++k)
+    if (!shared.clip_axis(child_voxels[0], k)) return result;  // reaches stays false where clipped
+  if (clipped[0]) {
+    ClippedPolygon below(shared);
+    result.reaches[0] = finish_clipping(below, child_voxels[0], axis, result.bounds[0]);
+  }
+  if (clipped[1]) result.reaches[1] = finish_clipping(shared, child_voxels[1], axis, result.bounds[1]);
+  return result;
+}
+
+}  // namespace kdray::detail

@@ -9,13 +9,13 @@ namespace kdray {
 
 struct DeviceGeometry {
   cl::Buffer nodes, leaf_triangles;
-  cl::Buffer leaf_vertices;      // gather_leaf_vertices: what traversal reads
-  cl::Buffer triangle_vertices;  // gather_triangle_vertices: what shading reads
-  cl::Buffer indices;            // 3 per triangle: vertex numbers of normals and uvs
+  cl::Buffer leaf_vertices;  // gather_leaf_vertices: what traversal reads
 };
 
 struct DeviceScene {
   DeviceGeometry geometry;
+  cl::Buffer triangle_vertices;  // gather_triangle_vertices: what shading reads of a hit
+  cl::Buffer indices;            // 3 per triangle: vertex numbers of normals and uvs
   cl::Buffer material_ids, materials, normals, uvs, tangents, textures, texels, lights;
   cl::Buffer env_texels, env_cdf;  // kernels/pt_environment.h
   cl::Buffer punctuals;            // PtPunctual per Scene::lights entry

@@ -99,12 +99,9 @@ void add_emitters(SceneArrays& arrays, const Scene& scene) {
 GeometryArrays geometry_arrays(const Scene& scene, const KdTree& tree) {
   GeometryArrays geometry;
   geometry.gathered_leaf_vertices = gather_leaf_vertices(scene, tree);
-  geometry.gathered_vertices = gather_triangle_vertices(scene);
   geometry.nodes = host_array(tree.nodes);
   geometry.leaf_triangles = host_array(tree.leaf_triangles);
   geometry.leaf_vertices = host_array(geometry.gathered_leaf_vertices);
-  geometry.triangle_vertices = host_array(geometry.gathered_vertices);
-  geometry.indices = host_array(scene.indices);
   const Vec3& lo = tree.bounds.min;
   const Vec3& hi = tree.bounds.max;
   float min[3] = {lo.x, lo.y, lo.z}, max[3] = {hi.x, hi.y, hi.z};
@@ -118,6 +115,9 @@ GeometryArrays geometry_arrays(const Scene& scene, const KdTree& tree) {
 SceneArrays scene_arrays(const Scene& scene, const KdTree& tree, const Environment* environment) {
   SceneArrays arrays;
   arrays.geometry = geometry_arrays(scene, tree);
+  arrays.gathered_vertices = gather_triangle_vertices(scene);
+  arrays.triangle_vertices = host_array(arrays.gathered_vertices);
+  arrays.indices = host_array(scene.indices);
   arrays.material_ids = host_array(scene.material_ids);
   arrays.normals = host_array(scene.normals);
   arrays.uvs = host_array(scene.uvs);

@@ -35,7 +35,6 @@ struct GeometryArrays {
   PT_SCENE_BUFFERS(KD_ARRAY_MEMBER, KD_ARRAY_SKIP)
   float bounds_min[3] = {0, 0, 0}, bounds_max[3] = {0, 0, 0};
   TraversalArray<float> gathered_leaf_vertices;  // what leaf_vertices views
-  TraversalArray<float> gathered_vertices;       // what triangle_vertices views
 
   GeometryArrays() = default;
   GeometryArrays(GeometryArrays&&) = default;  // a move keeps the views valid, a copy would not
@@ -56,6 +55,7 @@ struct SceneArrays {
   float light_area_pdf_scale = 0;  // 1 / sum(luminance(Le) * area)
 
   // Storage of the arrays that the scene does not hold as the kernels read them.
+  TraversalArray<float> gathered_vertices;  // what triangle_vertices views
   std::vector<Tangent> computed_tangents;
   std::vector<PtMaterial> device_materials;
   std::vector<PtTexture> device_textures;

@@ -1,12 +1,13 @@
 // device_film_check SCENE.kdscene SCENE.kdtree DEVICE_A DEVICE_B [--wavefront] [--size N] [--spp N]
-//                   [--camera PX,PY,PZ,TX,TY,TZ,FOV]
+//                   [--camera PX,PY,PZ,TX,TY,TZ,FOV] [--traversal-a fast|robust] [--traversal-b fast|robust]
 // Renders one image on two devices (--device names: host, cpu, gpu, an index) and compares the
 // films' fixed-point sums exactly, the film that merges bit for bit across devices (film.h);
 // prints one JSON line: each device's times, how many sums differ, the largest difference and
 // where the first one is. Needs no image codec, so it runs from a bundle of a few binaries
 // (scripts/gpu-check.sh). --wavefront renders DEVICE_A's image with the wavefront kernels and
 // DEVICE_B's with the megakernel, which the host alone has and which gives the same film
-// (determinism_test.cpp). Exit status: 0 bit for bit the same; 3 the films differ; 1 failure; 2 usage.
+// (determinism_test.cpp). --traversal-a/-b name a device's traversal (default: the device's own),
+// so that one device can be compared with itself. Exit status: 0 bit for bit the same; 3 the films differ; 1 failure; 2 usage.
 #include <kdray/kdtree.h>
 #include <kdray/render.h>
 #include <kdray/scene_file.h>
@@ -37,7 +38,7 @@ kdray::Camera parse_camera(const std::string& text) {
 }
 
 nlohmann::json device_report(const std::string& selection, const kdray::RenderStats& stats) {
-  return {{"selection", selection},         {"device", stats.device},
+  return {{"selection", selection},         {"device", stats.device}, {"traversal", stats.traversal},
           {"kernel_options", stats.kernel_options}, {"build_seconds", stats.build_seconds},
           {"render_seconds", stats.render_seconds}, {"rays", stats.rays},
           {"mrays_per_s", stats.render_seconds > 0 ? double(stats.rays) / stats.render_seconds * 1e-6 : 0.0}};
@@ -45,14 +46,23 @@ nlohmann::json device_report(const std::string& selection, const kdray::RenderSt
 
 }  // namespace
 
+kdray::TraversalPath parse_traversal(const std::string& name) {
+  if (name == "fast") return kdray::TraversalPath::FastWhereSafe;
+  if (name == "robust") return kdray::TraversalPath::Robust;
+  throw std::invalid_argument("--traversal-a and --traversal-b want fast or robust");
+}
+
 int main(int argc, char** argv) {
   if (argc < 5) {
     std::cerr << "usage: device_film_check SCENE.kdscene SCENE.kdtree DEVICE_A DEVICE_B [--wavefront] [--size N] "
-                 "[--spp N] [--camera PX,PY,PZ,TX,TY,TZ,FOV]\n";
+                 "[--spp N] [--camera PX,PY,PZ,TX,TY,TZ,FOV] [--traversal-a fast|robust] [--traversal-b fast|robust]\n";
     return 2;
   }
   try {
     kdray::RenderSettings settings;
+    kdray::DeviceSelection a, b;
+    a.device = argv[3];
+    b.device = argv[4];
     for (int i = 5; i < argc; ++i) {
       const std::string flag = argv[i];
       const bool has_value = i + 1 < argc;
@@ -64,6 +74,10 @@ int main(int argc, char** argv) {
         settings.spp = static_cast<uint32_t>(std::strtoul(argv[++i], nullptr, 10));
       } else if (flag == "--camera" && has_value) {
         settings.camera = parse_camera(argv[++i]);
+      } else if (flag == "--traversal-a" && has_value) {
+        a.traversal = parse_traversal(argv[++i]);
+      } else if (flag == "--traversal-b" && has_value) {
+        b.traversal = parse_traversal(argv[++i]);
       } else {
         std::cerr << "device_film_check: error: unknown or incomplete option " << flag << "\n";
         return 2;
@@ -73,9 +87,6 @@ int main(int argc, char** argv) {
     const kdray::KdTree tree = kdray::read_tree(argv[2]);
     kdray::check_tree_matches_scene(tree, argv[2], scene, argv[1]);
 
-    kdray::DeviceSelection a, b;
-    a.device = argv[3];
-    b.device = argv[4];
     kdray::RenderStats stats_a, stats_b;
     const kdray::Film film_a = kdray::render(scene, tree, settings, a, &stats_a);
     kdray::RenderSettings megakernel = settings;

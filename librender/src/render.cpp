@@ -8,6 +8,7 @@
 
 #include <kdray/clock.h>
 #include <kdray/error.h>
+#include <kdray/trace_opencl.h>
 
 #include <kernels/pt_scene_args.h>
 
@@ -157,7 +158,9 @@ std::unique_ptr<RenderWorker> prepare_device(const Scene& scene, const KdTree& t
   cl::Runtime& runtime = cl::runtime_for(device);
   RenderStats stats;
   stats.device = runtime.info().name;
-  stats.kernel_options = kernel_feature_options(render.feature_bits, device);
+  const TraversalPath traversal = traversal_path_for(device, runtime.info().is_gpu);
+  stats.kernel_options = kernel_feature_options(render.feature_bits, device) + traversal_path_option(traversal);
+  stats.traversal = traversal_path_name(traversal);
   stats.default_light = render.environment && !settings.environment;
   const bool wavefront = settings.form == RenderForm::Wavefront;
   cl::ProgramBuild build = runtime.program(wavefront ? "pt_wavefront.cl" : "pt_megakernel.cl", stats.kernel_options);
@@ -314,7 +317,7 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& reques
   }
 
   RenderStats stats = devices.front()->stats;
-  std::vector<std::string> names, sources;
+  std::vector<std::string> names, sources, traversals;
   for (size_t i = 1; i < devices.size(); ++i) {
     stats.build_seconds += devices[i]->stats.build_seconds;
     stats.upload_seconds += devices[i]->stats.upload_seconds;
@@ -322,9 +325,11 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& reques
   for (const auto& d : devices) {
     names.push_back(d->stats.device);
     sources.push_back(d->stats.build_source);
-    stats.devices.push_back({d->stats.device, d->device_index, 0, 0});
+    traversals.push_back(d->stats.traversal);
+    stats.devices.push_back({d->stats.device, d->device_index, d->stats.traversal, 0, 0});
   }
   stats.build_source = join_distinct(sources, ", ");
+  stats.traversal = join_distinct(traversals, ", ");
 
   auto render_start = Clock::now();
   SampleScheduler scheduler(settings, devices.size(), progress);

@@ -35,8 +35,10 @@
 #include "render_internal.h"
 
 #include <kdray/clock.h>
+#include <kdray/error.h>
 #include <kdray/render.h>
 #include <kdray/threads.h>
+#include <kdray/trace_opencl.h>
 
 #include <kernels/kd_types.h>
 #include <kernels/kd_vector.h>
@@ -114,6 +116,10 @@ class HostRender : public RenderWorker {
 
 std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tree, const ResolvedRender& render,
                                            const DeviceSelection& device) {
+  // The host's traversal is the CPU's: the fast path where it applies (trace_opencl.h).
+  if (device.traversal && *device.traversal != TraversalPath::FastWhereSafe) {
+    throw Error("", "the host renders with the fast traversal; the robust traversal alone is for OpenCL devices");
+  }
   const auto start = std::chrono::steady_clock::now();
   SceneArrays arrays = scene_arrays(scene, tree, render.environment.get());
   const PtRenderParams params = render_params(render, arrays);
@@ -126,6 +132,7 @@ std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tre
   stats.kernel_options = "-DKD_ALL_FEATURES" + (defines == std::string::npos ? "" : options.substr(defines));
   stats.default_light = render.environment && !render.settings.environment;
   stats.build_source = "built in";
+  stats.traversal = traversal_path_name(TraversalPath::FastWhereSafe);
   stats.threads = host->threads();
   stats.upload_seconds = seconds_since(start);
   return host;

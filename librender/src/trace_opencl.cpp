@@ -19,15 +19,27 @@ unsigned kernel_stack_size(TraversalStack stack) {
   return 0;
 }
 
+TraversalPath traversal_path_for(const DeviceSelection& device, bool gpu) {
+  if (device.traversal) return *device.traversal;
+  return gpu ? TraversalPath::Robust : TraversalPath::FastWhereSafe;
+}
+
+std::string traversal_path_option(TraversalPath path) {
+  return path == TraversalPath::Robust ? " -DKD_TRAVERSAL_ROBUST_ONLY" : "";
+}
+
+const char* traversal_path_name(TraversalPath path) { return path == TraversalPath::Robust ? "robust" : "fast"; }
+
 TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu) {
+  const TraversalPath traversal = traversal_path_for(device, gpu);
   std::string options = "-cl-std=CL1.2";
   if (device.short_stack_size) options += " -DKD_SHORT_STACK_SIZE=" + std::to_string(device.short_stack_size);
-  if (device.robust_traversal) options += " -DKD_TRAVERSAL_ROBUST_ONLY";
+  options += traversal_path_option(traversal);
   // One ray per work-item everywhere: a GPU vectorises across work-items. On a CPU device
   // (PoCL) each work-item runs as scalar code and waits on its node fetches, so the far child
   // of a split is prefetched when pushed; GPU compilers need not know __builtin_prefetch.
-  if (gpu) return {options, "one-ray-per-work-item"};
-  return {options + " -DKD_PREFETCH_NODES", "one-ray-per-work-item+prefetch"};
+  if (gpu) return {options, "one-ray-per-work-item", traversal};
+  return {options + " -DKD_PREFETCH_NODES", "one-ray-per-work-item+prefetch", traversal};
 }
 
 std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
@@ -37,6 +49,7 @@ std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree,
   stats.device = runtime.info().name;
   const TraceKernelBuild kernel_build = trace_kernel_build(device, runtime.info().is_gpu);
   stats.kernel_variant = kernel_build.variant;
+  stats.traversal = kernel_build.traversal;
   cl::ProgramBuild build = runtime.program("kd_trace.cl", kernel_build.options);
   stats.build_seconds = build.seconds;
   stats.build_source = build.source;

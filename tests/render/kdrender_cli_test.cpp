@@ -142,6 +142,27 @@ TEST_F(KdrenderCli, HostWritesTheSameExrAsPocl) {
   EXPECT_EQ(read_film_exr(path("merged.exr")).sums, on_pocl.sums);
 }
 
+// --traversal picks the traversal the program compiles (auto: the device's own, the fast path on
+// a CPU); the robust code alone renders the same film, and --json says which ran.
+TEST_F(KdrenderCli, TraversalsRenderTheSameFilmAndJsonNamesTheOneThatRan) {
+  const std::string options = "--spp 2 --seed 5 --device cpu --json ";
+  test::ToolRun fast = kdrender(cornell(path("fast.exr"), options));
+  ASSERT_EQ(fast.exit_code, 0) << fast.out;
+  test::ToolRun robust = kdrender(cornell(path("robust.exr"), options + "--traversal robust"));
+  ASSERT_EQ(robust.exit_code, 0) << robust.out;
+  const nlohmann::json fast_report = nlohmann::json::parse(fast.out), robust_report = nlohmann::json::parse(robust.out);
+  EXPECT_EQ(fast_report["traversal"], "fast");
+  EXPECT_EQ(fast_report["devices"][0]["traversal"], "fast");
+  EXPECT_EQ(robust_report["traversal"], "robust");
+  EXPECT_NE(robust_report["kernel_options"].get<std::string>().find("-DKD_TRAVERSAL_ROBUST_ONLY"), std::string::npos);
+  EXPECT_EQ(fast_report["kernel_options"].get<std::string>().find("-DKD_TRAVERSAL_ROBUST_ONLY"), std::string::npos);
+  EXPECT_EQ(read_film_exr(path("fast.exr")).sums, read_film_exr(path("robust.exr")).sums);
+  test::ToolRun host = kdrender(cornell(path("host-robust.exr"), "--device host --traversal robust"));
+  EXPECT_EQ(host.exit_code, 2) << host.out;
+  EXPECT_NE(host.out.find("--traversal robust"), std::string::npos) << host.out;
+  EXPECT_FALSE(fs::exists(path("host-robust.exr")));
+}
+
 TEST_F(KdrenderCli, HostRendersWithoutAnOpenClPlatform) {
   test::ToolRun run = test::run_command("OCL_ICD_VENDORS=" + test::shell_quoted(path("no-vendors")) + " " +
                                         test::shell_quoted(test::tool_path("kdrender")) + " " +

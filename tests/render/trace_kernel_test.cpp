@@ -79,6 +79,38 @@ TEST_F(TraceKernel, ShortStackOfOneGivesTheSameHits) {
   EXPECT_EQ(count_differences(cpu, trace_rays_opencl(*scene_, *tree_, rays, depth_one)), 0u);
 }
 
+// A device compiles its own traversal unless one is named: the robust code alone on a GPU, where
+// it traced faster, the fast path on a CPU; the program's options and its reported path agree.
+TEST(TraceKernelBuilds, EachDeviceKindGetsItsOwnTraversalUnlessOneIsNamed) {
+  const std::string robust_only = "-DKD_TRAVERSAL_ROBUST_ONLY";
+  const TraceKernelBuild gpu = trace_kernel_build(DeviceSelection{}, true);
+  const TraceKernelBuild cpu = trace_kernel_build(DeviceSelection{}, false);
+  EXPECT_EQ(gpu.traversal, TraversalPath::Robust);
+  EXPECT_NE(gpu.options.find(robust_only), std::string::npos) << gpu.options;
+  EXPECT_EQ(cpu.traversal, TraversalPath::FastWhereSafe);
+  EXPECT_EQ(cpu.options.find(robust_only), std::string::npos) << cpu.options;
+  DeviceSelection named;
+  named.traversal = TraversalPath::FastWhereSafe;
+  EXPECT_EQ(trace_kernel_build(named, true).options.find(robust_only), std::string::npos);
+  named.traversal = TraversalPath::Robust;
+  EXPECT_NE(trace_kernel_build(named, false).options.find(robust_only), std::string::npos);
+  EXPECT_STREQ(traversal_path_name(TraversalPath::Robust), "robust");
+  EXPECT_STREQ(traversal_path_name(TraversalPath::FastWhereSafe), "fast");
+}
+
+TEST_F(TraceKernel, RobustTraversalOnPoclGivesTheSameHits) {
+  std::vector<RayRecord> rays = random_rays(tree_->bounds, 20000, 31);
+  std::vector<RayRecord> hard = hard_case_rays(*scene_, *tree_, 20000, 32);
+  rays.insert(rays.end(), hard.begin(), hard.end());
+  DeviceSelection fast{"cpu"}, robust{"cpu"};
+  robust.traversal = TraversalPath::Robust;
+  TraceOpenClStats fast_stats, robust_stats;
+  const std::vector<HitRecord> fast_hits = trace_rays_opencl(*scene_, *tree_, rays, fast, &fast_stats);
+  EXPECT_EQ(count_differences(fast_hits, trace_rays_opencl(*scene_, *tree_, rays, robust, &robust_stats)), 0u);
+  EXPECT_EQ(fast_stats.traversal, TraversalPath::FastWhereSafe);
+  EXPECT_EQ(robust_stats.traversal, TraversalPath::Robust);
+}
+
 TEST(TraceKernelEdges, NoRaysGiveNoHits) {
   Scene scene;
   scene.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};

@@ -117,6 +117,11 @@ void add_frame_options(CLI::App& app, FrameOptions& o) {
                  "Debug: traversal short-stack entries (KD_SHORT_STACK_SIZE; 0: kernel default 8)")
       ->capture_default_str();
   app.add_flag("--wavefront", o.wavefront, "Use the wavefront kernels instead of the (faster) megakernel");
+  app.add_option("--traversal", o.traversal,
+                 "Traversal the OpenCL programs compile: fast (a lean path for common rays, the robust code for the "
+                 "rest), robust (the robust code alone), or auto (robust on a GPU, fast on a CPU); the same image")
+      ->check(CLI::IsMember({"auto", "fast", "robust"}))
+      ->capture_default_str();
 
   defaults->group(callers_group);
 }
@@ -160,12 +165,17 @@ Frame resolve_frame(const FrameOptions& o, EnvironmentCache& environments) {
     throw UsageError("--device list prints the devices; it renders nothing");
   }
   kdray::tool::check_threads_option(o.device.device, o.device.threads);
-  if (o.device.device == kdray::kHostDevice && (o.device.local_size || o.device.short_stack_size || o.wavefront)) {
-    throw UsageError("--local-size, --stack-size and --wavefront are for OpenCL devices, not --device host");
+  if (o.device.device == kdray::kHostDevice &&
+      (o.device.local_size || o.device.short_stack_size || o.wavefront || o.traversal == "robust")) {
+    throw UsageError("--local-size, --stack-size, --wavefront and --traversal robust are for OpenCL devices, not "
+                     "--device host");
   }
   if (o.output.empty()) throw UsageError("-o OUTPUT is required");
   if (!kdray::is_supported_image_path(o.output)) throw UsageError("-o " + o.output + ": use .exr, .png or .jpg");
   Frame frame{o.output, o.settings, o.device, 0};
+  if (o.traversal != "auto") {
+    frame.device.traversal = o.traversal == "robust" ? kdray::TraversalPath::Robust : kdray::TraversalPath::FastWhereSafe;
+  }
   kdray::RenderSettings& s = frame.settings;
   apply_aovs(o, s);
   apply_camera(o, s);

@@ -29,6 +29,7 @@ struct FrameOptions {
   std::string env_image, env_color;
   float env_strength = 1, env_rotate = 0;
   bool no_default_light = false, no_mis = false, wavefront = false;
+  std::string traversal = "auto";
   kdray::RenderSettings settings;  // the plain numbers (size, spp, seed, ...) are written here directly
   kdray::DeviceSelection device;
 };

@@ -41,6 +41,7 @@ nlohmann::json frame_json(const Frame& frame, const FrameResult& result) {
   for (const kdray::DeviceShare& share : stats.devices) {
     devices.push_back({{"device", share.device},
                        {"index", share.index},
+                       {"traversal", share.traversal},
                        {"samples", share.samples},
                        {"share", film.sample_count ? double(share.samples) / film.sample_count : 0.0},
                        {"seconds", share.seconds},
@@ -59,6 +60,7 @@ nlohmann::json frame_json(const Frame& frame, const FrameResult& result) {
           {"max_bounces", film.max_bounces},
           {"sampler", kdray::sampler_name(film.sampler)},
           {"kernel_options", stats.kernel_options},
+          {"traversal", stats.traversal},
           {"environment", environment ? environment->source : stats.default_light ? "default" : ""},
           {"environment_seconds", frame.environment_seconds},
           {"build_seconds", stats.build_seconds},
@@ -84,8 +86,8 @@ void print_frame_summary(const Frame& frame, const FrameResult& result) {
               film.sample_offset + film.sample_count - 1, film.max_bounces, kdray::sampler_name(film.sampler),
               film.seed);
   const std::string threads = stats.device == kdray::kHostDevice ? " (" + std::to_string(stats.threads) + " threads)" : "";
-  std::printf("device %s%s; kernel %s (%s, %.2f s)\n", stats.device.c_str(), threads.c_str(),
-              stats.kernel_options.c_str(), stats.build_source.c_str(), stats.build_seconds);
+  std::printf("device %s%s; kernel %s (%s, %.2f s); %s traversal\n", stats.device.c_str(), threads.c_str(),
+              stats.kernel_options.c_str(), stats.build_source.c_str(), stats.build_seconds, stats.traversal.c_str());
   std::printf("render %.3f s: %.2f M samples/s, %.2f M rays/s\n", stats.render_seconds,
               rate(pixel_samples, stats.render_seconds) * 1e-6, rate(double(stats.rays), stats.render_seconds) * 1e-6);
   if (stats.devices.size() > 1) {

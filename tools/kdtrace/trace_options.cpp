@@ -33,9 +33,10 @@ void add_options(CLI::App& app, Options& o) {
   app.add_option("--stack", o.stack_name, "Traversal stack: short (8 entries, restart), depth1, full")
       ->check(CLI::IsMember({"short", "depth1", "full"}))->capture_default_str()->group("Device");
   app.add_option("--traversal", o.path_name,
-                 "Traversal: fast (the fast path for every ray it gives the same hits, the robust code for the rest) "
-                 "or robust (every ray takes the robust code; with the short stack only on the host)")
-      ->check(CLI::IsMember({"fast", "robust"}))->capture_default_str()->group("Device");
+                 "Traversal: fast (the fast path for every ray it gives the same hits, the robust code for the rest), "
+                 "robust (every ray takes the robust code; with the short stack only on the host), or auto (the "
+                 "device's own: robust on a GPU, fast on a CPU). All give the same hits")
+      ->check(CLI::IsMember({"auto", "fast", "robust"}))->capture_default_str()->group("Device");
 }
 
 kdray::tool::DeviceKind checked_device(const Options& o) {
@@ -46,6 +47,13 @@ kdray::tool::DeviceKind checked_device(const Options& o) {
   if (o.scene_path.empty() || o.tree_path.empty() == o.cache_folder.empty())
     throw UsageError("SCENE and either TREE or --cache DIR are required");
   if (o.rays_path.empty() == o.generate.empty()) throw UsageError("give one of --rays or --generate");
+  return device;
+}
+
+kdray::DeviceSelection opencl_selection(const Options& o) {
+  kdray::DeviceSelection device = o.opencl_device;
+  if (o.path_name != "auto")
+    device.traversal = o.path_name == "robust" ? kdray::TraversalPath::Robust : kdray::TraversalPath::FastWhereSafe;
   return device;
 }
 

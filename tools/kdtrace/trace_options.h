@@ -22,7 +22,7 @@ struct Options {
   size_t count = 1000000;
   uint32_t width = 1024, height = 768;
   uint64_t seed = 1;
-  std::string stack_name = "short", path_name = "fast";
+  std::string stack_name = "short", path_name = "auto";
   kdray::TraceOptions traversal;  // --threads is written here; stack and path come from their names
   kdray::DeviceSelection opencl_device;
   kdray::tool::OutputFlags flags;
@@ -35,7 +35,11 @@ void add_options(CLI::App& app, Options& o);
 // any other check, since listing devices needs no scene; throws UsageError otherwise.
 kdray::tool::DeviceKind checked_device(const Options& o);
 
-// The traversal the names ask for; throws UsageError for a combination the host cannot run.
+// The traversal the names ask for; throws UsageError for a combination the host cannot run. The
+// host's auto is the fast path, as on any CPU.
 kdray::TraceOptions traversal_options(const Options& o, bool host);
+
+// The OpenCL device with the traversal --traversal names (auto: left to the device).
+kdray::DeviceSelection opencl_selection(const Options& o);
 
 }  // namespace kdtrace

@@ -23,7 +23,7 @@ nlohmann::json trace_json(const Options& o, bool host, size_t ray_count, const T
                             {"rays", ray_count},          {"hits", hit_count(run)},
                             {"seconds", run.seconds},     {"cpu_seconds", run.cpu_seconds},
                             {"mrays_per_s", mrays_per_s(ray_count, run)},
-                            {"stack", o.stack_name},      {"traversal", o.path_name}};
+                            {"stack", o.stack_name},      {"traversal", kdray::traversal_path_name(run.traversal)}};
   const double per_ray = ray_count == 0 ? 0.0 : 1.0 / static_cast<double>(ray_count);
   summary["per_ray"] = {{"inner_steps", static_cast<double>(work.inner_steps) * per_ray},
                         {"leaves", static_cast<double>(work.leaves) * per_ray},
@@ -46,8 +46,9 @@ nlohmann::json trace_json(const Options& o, bool host, size_t ray_count, const T
 
 void print_trace(bool host, size_t ray_count, const TraceRun& run) {
   if (!host)
-    std::printf("OpenCL device %s (%s): program %s in %.3f s, upload %.3f s\n", run.opencl.device.c_str(),
-                run.opencl.kernel_variant.c_str(), run.opencl.build_source.c_str(), run.opencl.build_seconds,
+    std::printf("OpenCL device %s (%s, %s traversal): program %s in %.3f s, upload %.3f s\n",
+                run.opencl.device.c_str(), run.opencl.kernel_variant.c_str(),
+                kdray::traversal_path_name(run.traversal), run.opencl.build_source.c_str(), run.opencl.build_seconds,
                 run.opencl.upload_seconds);
   const size_t hits = hit_count(run);
   std::printf("%zu rays, %zu hits (%.1f%%) in %.3f s: %.2f Mrays/s\n", ray_count, hits,

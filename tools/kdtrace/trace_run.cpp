@@ -26,10 +26,11 @@ TraceRun trace_on(const kdray::PreparedTraversal* host_traversal, const kdray::S
   const auto start = kdray::Clock::now();
   if (host_traversal) {
     host_traversal->closest(rays, run.hits, options);
+    run.traversal = options.path;
   } else {
     opencl_device.short_stack_size = kdray::kernel_stack_size(options.stack);
-    opencl_device.robust_traversal = options.path == kdray::TraversalPath::Robust;
     run.hits = kdray::trace_rays_opencl(scene, tree, rays, opencl_device, &run.opencl);
+    run.traversal = run.opencl.traversal;
   }
   run.seconds = host_traversal ? kdray::seconds_since(start) : run.opencl.trace_seconds;
   run.cpu_seconds = kdray::tool::cpu_seconds() - cpu_start;

@@ -18,6 +18,7 @@ struct TraceRun {
   std::vector<HitRecord> hits;
   double seconds = 0;      // tracing only: for OpenCL the kernel time, rays already on the device
   double cpu_seconds = 0;  // user + system: with the wall time, tells a busy machine
+  kdray::TraversalPath traversal = kdray::TraversalPath::FastWhereSafe;  // the one that ran
   kdray::TraceOpenClStats opencl;
 };
 
@@ -25,7 +26,7 @@ struct TraceRun {
 std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene& scene, const kdray::KdTree& tree);
 
 // On the host with `host_traversal` (prepared beforehand: its set-up is not part of the rate),
-// else on the OpenCL device.
+// else on the OpenCL device (opencl_selection).
 TraceRun trace_on(const kdray::PreparedTraversal* host_traversal, const kdray::Scene& scene, const kdray::KdTree& tree,
                   const std::vector<RayRecord>& rays, const kdray::TraceOptions& options,
                   kdray::DeviceSelection opencl_device);

@@ -1,8 +1,11 @@
 // OpenCL devices through the ICD loader, and how a tool picks one (--device).
 #pragma once
 
+#include <kdray/traverse.h>
+
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,7 +33,8 @@ struct DeviceSelection {
   unsigned threads = 0;         // host: worker threads; 0: all cores
   size_t local_size = 0;        // work-group size; 0: the device's default (64 on CPUs)
   unsigned short_stack_size = 0;  // KD_SHORT_STACK_SIZE for the traversal; 0: the kernel default
-  bool robust_traversal = false;  // KD_TRAVERSAL_ROBUST_ONLY: no ray takes the traversal's fast path
+  // The traversal the programs compile; unset: the device's own (traversal_path_for, trace_opencl.h).
+  std::optional<TraversalPath> traversal{};
 };
 
 // The device `selection` names; throws kdray::Error if there is none.

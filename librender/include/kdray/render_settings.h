@@ -47,6 +47,7 @@ struct RenderSettings {
 struct DeviceShare {
   std::string device;
   int index = 0;           // in list_devices()
+  std::string traversal;   // "fast" or "robust": the traversal its program compiled (trace_opencl.h)
   uint32_t samples = 0;    // samples per pixel it rendered
   double seconds = 0;      // time its passes took
 };
@@ -54,6 +55,7 @@ struct DeviceShare {
 struct RenderStats {
   std::string device;           // its name, "host", or "N devices: names" for several
   std::string kernel_options;   // the -D feature defines the program was built with (host: the scene's features)
+  std::string traversal;        // "fast" or "robust" (both, comma-separated, when devices differ)
   double build_seconds = 0;     // obtaining the OpenCL program
   std::string build_source;     // "compiled", "disk cache" or "memory"
   double upload_seconds = 0;

@@ -19,7 +19,19 @@ struct TraceOpenClStats {
   double upload_seconds = 0;
   double trace_seconds = 0;  // kernel time only, rays already on the device
   std::string kernel_variant;  // how kd_trace.cl was built for this device (trace_rays_opencl)
+  TraversalPath traversal = TraversalPath::FastWhereSafe;  // the one it compiled
 };
+
+// The traversal a device's programs compile unless the selection names one: the robust code
+// alone on a GPU, the fast path where it applies on a CPU device. Both give the same hits bit
+// for bit. On a GPU the fast path's second code path, and the robust re-trace of the rays that
+// leave it, cost more in registers and divergence than its lean step saves; a CPU runs one ray
+// at a time and gains the lean step (bench/LOG.md, "GPU check").
+TraversalPath traversal_path_for(const DeviceSelection& device, bool gpu);
+// The build option that selects `path` (KD_TRAVERSAL_ROBUST_ONLY), with a leading space, or "".
+std::string traversal_path_option(TraversalPath path);
+// "fast" or "robust", as the tools' --traversal and --json name them.
+const char* traversal_path_name(TraversalPath path);
 
 // DeviceSelection::short_stack_size for a traversal stack: Depth1 one entry, Full as deep as a
 // tree can be (never restarts), Short 0, the kernel's default KD_SHORT_STACK_SIZE as on the CPU.
@@ -30,6 +42,7 @@ unsigned kernel_stack_size(TraversalStack stack);
 struct TraceKernelBuild {
   std::string options;
   std::string variant;
+  TraversalPath traversal;
 };
 TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu);
 

@@ -18,6 +18,10 @@ KDRENDER=$BUILD/tools/kdrender/kdrender
 KDTRACE=$BUILD/tools/kdtrace/kdtrace
 KDCOMPARE=$BUILD/tools/kdcompare/kdcompare
 
+# corpus_file PATH: PATH itself when absolute (a mesh of bench/make_meshes.py, say), else the
+# corpus file it names.
+corpus_file() { if [[ $1 == /* ]]; then echo "$1"; else echo "$CORPUS/$1"; fi; }
+
 # median: the median of the numbers on stdin, one a line (the mean of the middle two for an even count).
 median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 

@@ -7,7 +7,8 @@
 # the host build's kd_traverse, one thread, on 20000 rays of the same kind: random rays of seed 1,
 # camera rays at 160x125; "-" without valgrind). Compiles bench/embree_trace.cpp itself (needs
 # libembree-dev); the project's CMake never builds it.
-#   BUILD=build RUNS=3 RAYS=1000000 THREADS=2 bench/traverse.sh
+#   BUILD=build RUNS=3 RAYS=1000000 THREADS=2 [MESHES="NAME=PATH ..."] bench/traverse.sh
+# MESHES: corpus paths, or absolute ones (bench/make_meshes.py's, say), each named.
 # BASELINE=other/build adds a "before" kdtrace (another build of kdray) to every run.
 set -euo pipefail
 . "$(dirname "$0")/common.sh"
@@ -45,7 +46,7 @@ for entry in "${meshes[@]}"; do
   name="${entry%%=*}"
   scene="$work/$name.kdscene"
   tree="$work/$name.kdtree"
-  [[ -f "$scene" ]] || "$KDCONVERT" "$CORPUS/${entry#*=}" "$scene" --quiet > /dev/null
+  [[ -f "$scene" ]] || "$KDCONVERT" "$(corpus_file "${entry#*=}")" "$scene" --quiet > /dev/null
   [[ -f "$tree" ]] || "$KDBUILD" "$scene" "$tree" --quiet > /dev/null
   [[ -f "$work/$name.random.rays" ]] ||
     "$KDTRACE" "$scene" "$tree" --generate random --count "$rays" --seed 1 --write-rays "$work/$name.random.rays" > /dev/null

@@ -6,7 +6,8 @@
 # K_T x inner steps + K_I x triangle tests (kdbuild's K_T and K_I) and kdtrace's Mrays/s.
 # Medians of $RUNS runs, --threads 2 for both tools; every command is printed.
 #   BUILD=build RUNS=3 RAYS=1000000 [BASELINE=KDBUILD] bench/tree_build.sh [MESH...]
-# MESH: corpus paths relative to $CORPUS (default: the dragon, bunny_sub2 and dragons_4x4).
+# MESH: corpus paths relative to $CORPUS (default: the dragon, bunny_sub2 and dragons_4x4), or
+# absolute paths (the meshes of bench/make_meshes.py, say).
 # BASELINE: another kdbuild (an earlier commit's) measured the same way, its builds interleaved
 # run by run with this build's on a shared machine (modes base-binned and base-exact); the last
 # column says whether its tree has the same bytes as this build's in the same mode.
@@ -36,7 +37,7 @@ printf "%-16s %-11s %9s %8s %6s %8s %9s %8s %8s %9s %7s %5s\n" mesh mode process
 for mesh in "$@"; do
   name="$(basename "${mesh%.*}")"
   scene="$work/$name.kdscene"
-  [[ -f "$scene" ]] || "$KDCONVERT" "$CORPUS/$mesh" "$scene" --quiet > /dev/null
+  [[ -f "$scene" ]] || "$KDCONVERT" "$(corpus_file "$mesh")" "$scene" --quiet > /dev/null
   for mode in "${modes[@]}"; do : > "$work/$name.$mode.build.jsonl"; done
   for ((run = 0; run < runs; ++run)); do
     for mode in "${modes[@]}"; do

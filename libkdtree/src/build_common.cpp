@@ -48,11 +48,14 @@ Box3 above_plane(const Box3& voxel, int axis, float position) {
 
 
 double CostModel::split_cost(double p_left, double p_right, uint64_t n_left, uint64_t n_right) const {
-  const bool one_side_empty = n_left == 0 || n_right == 0;
-  const double lambda = one_side_empty && p_left != 1.0 && p_right != 1.0 ? empty_bonus : 1.0;
   // Counts are below 2^62: the signed conversion is exact and cheaper than the unsigned one.
-  return lambda * (traversal + intersection * (p_left * static_cast<double>(static_cast<int64_t>(n_left)) +
-                                               p_right * static_cast<double>(static_cast<int64_t>(n_right))));
+  const double cost = traversal + intersection * (p_left * static_cast<double>(static_cast<int64_t>(n_left)) +
+                                                   p_right * static_cast<double>(static_cast<int64_t>(n_right)));
+  // Only the first and last candidates of a sweep can have an empty side: the others skip
+  // choosing lambda (1, whose product is exact).
+  if (n_left != 0 && n_right != 0) return cost;
+  const double lambda = p_left != 1.0 && p_right != 1.0 ? empty_bonus : 1.0;
+  return lambda * cost;
 }
 
 CostModel cost_model_of(const BuildSettings& settings) {

@@ -197,6 +197,35 @@ enum Side : uint8_t { kBothSides = 0, kLeftOnly = 1, kRightOnly = 2, kNeitherSid
 // the plane to the chosen side; all others straddle and go to both.
 void classify(const Event* events, size_t count, const SplitChoice& split, uint8_t* sides);
 
+// Where a divided node's events go, per local triangle: the side it alone reaches (kLeftOnly
+// or kRightOnly; kBothSides for a straddler, whose events are made anew from its clipped
+// bounds) and how much lower its local index is in that child, shifted past the type bits.
+// Subtracting the drop from an event's packed word renumbers it and keeps its type.
+inline uint32_t event_route(size_t local, size_t child_local, Side side) {
+  return static_cast<uint32_t>(local - child_local) << 2 | side;
+}
+constexpr uint32_t kStraddlerRoute = kBothSides;
+
+// Sends each event whose triangle reaches one child only to that child, renumbered by its
+// route, in order: `left` and `right` advance past what they get. It does not branch on the
+// side (the sides of neighbouring events are unpredictable): every event is written to both
+// outputs, and each advances only over its own.
+inline void split_kept_events(const Event* events, size_t count, const uint32_t* routes, Event*& left,
+                              Event*& right) {
+  Event* l = left;
+  Event* r = right;
+  for (size_t e = 0; e < count; ++e) {
+    const uint32_t route = routes[events[e].triangle()];
+    const Event moved{events[e].position, events[e].packed - (route & ~3u)};
+    *l = moved;
+    *r = moved;
+    l += route & kLeftOnly;
+    r += (route & kRightOnly) >> 1;
+  }
+  left = l;
+  right = r;
+}
+
 // A tree or subtree under construction: nodes in depth-first order, near (below) child next,
 // and the leaf-triangle array. Indices are relative to this subtree.
 struct Subtree {

@@ -73,9 +73,9 @@ class SmallBuilder {
     left.depth = right.depth = node.depth + 1;
     left.count = right.count = 0;
 
-    // Local index of each parent triangle in each child (monotone, so kept events stay
-    // sorted); straddlers get fresh bounds, and fresh events in each child they reach.
-    uint32_t left_index[kSmallNodeTriangles], right_index[kSmallNodeTriangles];
+    // Each triangle's route for the kept events (local indices are monotone, so kept events
+    // stay sorted); straddlers get fresh bounds, and fresh events in each child they reach.
+    uint32_t routes[kSmallNodeTriangles];
     Event fresh[2][3][kMaxEvents];
     size_t fresh_count[2][3] = {};
     SmallNode* const children[2] = {&left, &right};
@@ -83,7 +83,7 @@ class SmallBuilder {
     auto place = [&](int c, size_t i, const Box3& bounds, bool straddles) {
       SmallNode& child = *children[c];
       const uint32_t local = child.count++;
-      (c == 0 ? left_index : right_index)[i] = local;
+      if (!straddles) routes[i] = event_route(i, local, c == 0 ? kLeftOnly : kRightOnly);
       child.triangles[local] = node.triangles[i];
       child.bounds[local] = bounds;
       if (straddles && with_events)
@@ -99,9 +99,6 @@ class SmallBuilder {
         }
     };
     for (size_t i = 0; i < n; ++i) {
-      // The event split below reads both indices of every triangle, so both hold a value.
-      left_index[i] = left.count;
-      right_index[i] = right.count;
       if (sides[i] == kLeftOnly) {
         place(0, i, node.bounds[i], false);
       } else if (sides[i] == kRightOnly) {
@@ -109,6 +106,7 @@ class SmallBuilder {
       } else {
         const StraddlerBounds straddler = straddler_bounds(scene_, node.triangles[i], node.bounds[i], child_voxels,
                                                            split.axis, parameters_.perfect_splits);
+        routes[i] = kStraddlerRoute;
         for (int c = 0; c < 2; ++c)
           if (straddler.reaches[c]) place(c, i, straddler.bounds[c], true);
       }
@@ -116,24 +114,14 @@ class SmallBuilder {
 
     // Children at the depth limit become leaves whatever their events say: they get none.
     if (!with_events) return;
-    // Each event goes to the child its triangle alone reaches, without a branch on the side:
-    // it is written to both and each child's cursor advances only over its own. Straddlers'
-    // fresh events are then merged in (the kept ones go straight to the child without any).
+    // Kept events go straight to the child when it has no fresh ones to merge in.
     for (int axis = 0; axis < 3; ++axis) {
       Event kept[2][kMaxEvents];
       Event* const to_left = fresh_count[0][axis] == 0 ? left.events[axis] : kept[0];
       Event* const to_right = fresh_count[1][axis] == 0 ? right.events[axis] : kept[1];
       Event* l = to_left;
       Event* r = to_right;
-      const Event* const events = node.events[axis];
-      for (size_t e = 0; e < node.event_count[axis]; ++e) {
-        const uint32_t local = events[e].triangle();
-        const uint32_t type = events[e].packed & 3u;
-        *l = Event{events[e].position, left_index[local] << 2 | type};
-        *r = Event{events[e].position, right_index[local] << 2 | type};
-        l += sides[local] == kLeftOnly;
-        r += sides[local] == kRightOnly;
-      }
+      split_kept_events(node.events[axis], node.event_count[axis], routes, l, r);
       Event* const ends[2] = {l, r};
       Event* const starts[2] = {to_left, to_right};
       for (int c = 0; c < 2; ++c) {

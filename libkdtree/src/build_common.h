@@ -15,6 +15,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <new>
 #include <utility>
@@ -197,30 +198,34 @@ enum Side : uint8_t { kBothSides = 0, kLeftOnly = 1, kRightOnly = 2, kNeitherSid
 // the plane to the chosen side; all others straddle and go to both.
 void classify(const Event* events, size_t count, const SplitChoice& split, uint8_t* sides);
 
-// Where a divided node's events go, per local triangle: the side it alone reaches (kLeftOnly
-// or kRightOnly; kBothSides for a straddler, whose events are made anew from its clipped
-// bounds) and how much lower its local index is in that child, shifted past the type bits.
-// Subtracting the drop from an event's packed word renumbers it and keeps its type.
-inline uint32_t event_route(size_t local, size_t child_local, Side side) {
-  return static_cast<uint32_t>(local - child_local) << 2 | side;
+// How a divided node renumbers the kept events of a triangle that only one child gets: an
+// event whose packed word is how much lower the triangle's local index is in that child,
+// shifted past the type bits, and whose position bits are zero.
+inline Event event_renumbering(size_t local, size_t child_local) {
+  return Event{0.0f, static_cast<uint32_t>(local - child_local) << 2};
 }
-constexpr uint32_t kStraddlerRoute = kBothSides;
 
-// Sends each event whose triangle reaches one child only to that child, renumbered by its
-// route, in order: `left` and `right` advance past what they get. It does not branch on the
-// side (the sides of neighbouring events are unpredictable): every event is written to both
-// outputs, and each advances only over its own.
-inline void split_kept_events(const Event* events, size_t count, const uint32_t* routes, Event*& left,
-                              Event*& right) {
+// Sends each event whose triangle reaches one child only (`sides`) to that child, renumbered
+// (`renumberings`), in order: `left` and `right` advance past what they get. Each event is
+// renumbered as one 8-byte integer: the renumbering's position bits are zero and the packed
+// word does not go below zero, so no borrow crosses between the two halves, whichever half
+// the position is in. It does not branch on the side (the sides of neighbouring events are
+// unpredictable): every event is written to both outputs, and each advances only over its own.
+inline void split_kept_events(const Event* events, size_t count, const uint8_t* sides, const Event* renumberings,
+                              Event*& left, Event*& right) {
   Event* l = left;
   Event* r = right;
   for (size_t e = 0; e < count; ++e) {
-    const uint32_t route = routes[events[e].triangle()];
-    const Event moved{events[e].position, events[e].packed - (route & ~3u)};
-    *l = moved;
-    *r = moved;
-    l += route & kLeftOnly;
-    r += (route & kRightOnly) >> 1;
+    const uint32_t local = events[e].triangle();
+    uint64_t event_bits, renumbering_bits;
+    std::memcpy(&event_bits, &events[e], sizeof event_bits);
+    std::memcpy(&renumbering_bits, &renumberings[local], sizeof renumbering_bits);
+    const uint64_t moved = event_bits - renumbering_bits;
+    std::memcpy(l, &moved, sizeof moved);
+    std::memcpy(r, &moved, sizeof moved);
+    const uint32_t side = sides[local];
+    l += side & kLeftOnly;
+    r += side >> 1;
   }
   left = l;
   right = r;

@@ -168,10 +168,11 @@ class EventBuilder {
     const size_t n = work.triangles.size();
     // Scratch arrays reused by each thread's nodes: allocation dominated small nodes.
     thread_local std::vector<uint8_t> sides;
-    thread_local std::vector<uint32_t> routes;
+    thread_local std::vector<Event> renumberings;
     sides.assign(n, kBothSides);
-    // Only grown, never shrunk: every entry below n is written before it is read.
-    if (routes.size() < n) routes.resize(n);
+    // Only grown, never shrunk: straddlers' entries are read too (and their events dropped),
+    // so they must hold some value, and growing value-initialises only new entries.
+    if (renumberings.size() < n) renumberings.resize(n);
     classify(work.events[split.axis].data(), work.events[split.axis].size(), split, sides.data());
     const Box3 child_voxels[2] = {below_plane(work.voxel, split.axis, split.position),
                                   above_plane(work.voxel, split.axis, split.position)};
@@ -186,15 +187,15 @@ class EventBuilder {
     // child bounds come from clipping the triangle itself.
     const bool keep_bounds = !perfect_splits_;
 
-    // Each triangle's route for the kept events (local indices are monotone, so the order of
-    // the kept events survives). Straddlers get fresh bounds and events in each child they
-    // really reach.
+    // Each kept triangle's renumbering (local indices are monotone, so the order of the kept
+    // events survives). Straddlers get fresh bounds and events in each child they really
+    // reach.
     thread_local EventArray fresh_left[3], fresh_right[3];
     for (int axis = 0; axis < 3; ++axis) {
       fresh_left[axis].clear();
       fresh_right[axis].clear();
     }
-    auto place = [keep_bounds](NodeWork& child, Side side, EventArray* fresh, size_t i, uint32_t triangle,
+    auto place = [keep_bounds](NodeWork& child, EventArray* fresh, size_t i, uint32_t triangle,
                                const Box3& bounds) {
       const uint32_t local = static_cast<uint32_t>(child.triangles.size());
       child.triangles.push_back(triangle);
@@ -202,7 +203,7 @@ class EventBuilder {
       if (fresh)
         for (int axis = 0; axis < 3; ++axis) append_events(fresh[axis], bounds, axis, local);
       else
-        routes[i] = event_route(i, local, side);
+        renumberings[i] = event_renumbering(i, local);
     };
     size_t left_count = 0, right_count = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -218,27 +219,27 @@ class EventBuilder {
       const uint32_t triangle = work.triangles[i];
       const Box3& parent_bounds = keep_bounds ? work.bounds[i] : work.voxel;
       if (sides[i] == kLeftOnly) {
-        place(left, kLeftOnly, nullptr, i, triangle, parent_bounds);
+        place(left, nullptr, i, triangle, parent_bounds);
       } else if (sides[i] == kRightOnly) {
-        place(right, kRightOnly, nullptr, i, triangle, parent_bounds);
+        place(right, nullptr, i, triangle, parent_bounds);
       } else {
         const StraddlerBounds straddler =
             straddler_bounds(scene_, triangle, parent_bounds, child_voxels, split.axis, perfect_splits_);
-        routes[i] = kStraddlerRoute;
-        if (straddler.reaches[0]) place(left, kLeftOnly, fresh_left, i, triangle, straddler.bounds[0]);
-        if (straddler.reaches[1]) place(right, kRightOnly, fresh_right, i, triangle, straddler.bounds[1]);
+        if (straddler.reaches[0]) place(left, fresh_left, i, triangle, straddler.bounds[0]);
+        if (straddler.reaches[1]) place(right, fresh_right, i, triangle, straddler.bounds[1]);
       }
     }
 
     // The three axes are independent; nodes large enough to be worth it split them in
     // parallel (the top of a tree is often a chain of empty-space cuts with no other
     // parallelism). The scratch arrays are this thread's, so they are passed on explicitly.
-    const uint32_t* const node_routes = routes.data();
+    const uint8_t* const node_sides = sides.data();
+    const Event* const node_renumberings = renumberings.data();
     EventArray* const fresh_to_left = fresh_left;
     EventArray* const fresh_to_right = fresh_right;
     auto split_axis = [&](int axis, EventArray& kept_left, EventArray& kept_right) {
-      split_events(work.events[axis], node_routes, fresh_to_left[axis], fresh_to_right[axis], kept_left, kept_right,
-                   left.events[axis], right.events[axis]);
+      split_events(work.events[axis], node_sides, node_renumberings, fresh_to_left[axis], fresh_to_right[axis],
+                   kept_left, kept_right, left.events[axis], right.events[axis]);
     };
     if (n >= kParallelTriangles) {
       // Isolated: while it waits for the axes, this thread must not take up another node's
@@ -258,16 +259,16 @@ class EventBuilder {
   // Sends each event of one axis whose triangle goes to only one side to that child, then
   // merges in the child's re-clipped (fresh) events. Kept events go straight to the child when
   // there is nothing to merge in.
-  static void split_events(const EventArray& events, const uint32_t* routes, EventArray& fresh_left,
-                           EventArray& fresh_right, EventArray& kept_left, EventArray& kept_right,
-                           EventArray& left_events, EventArray& right_events) {
+  static void split_events(const EventArray& events, const uint8_t* sides, const Event* renumberings,
+                           EventArray& fresh_left, EventArray& fresh_right, EventArray& kept_left,
+                           EventArray& kept_right, EventArray& left_events, EventArray& right_events) {
     EventArray& to_left = fresh_left.empty() ? left_events : kept_left;
     EventArray& to_right = fresh_right.empty() ? right_events : kept_right;
     to_left.resize(events.size());
     to_right.resize(events.size());
     Event* l = to_left.data();
     Event* r = to_right.data();
-    split_kept_events(events.data(), events.size(), routes, l, r);
+    split_kept_events(events.data(), events.size(), sides, renumberings, l, r);
     to_left.resize(static_cast<size_t>(l - to_left.data()));
     to_right.resize(static_cast<size_t>(r - to_right.data()));
     merge_fresh(kept_left, fresh_left, left_events);

@@ -73,9 +73,9 @@ class SmallBuilder {
     left.depth = right.depth = node.depth + 1;
     left.count = right.count = 0;
 
-    // Each triangle's route for the kept events (local indices are monotone, so kept events
-    // stay sorted); straddlers get fresh bounds, and fresh events in each child they reach.
-    uint32_t routes[kSmallNodeTriangles];
+    // Each kept triangle's renumbering (local indices are monotone, so kept events stay
+    // sorted); straddlers get fresh bounds, and fresh events in each child they reach.
+    Event renumberings[kSmallNodeTriangles];
     Event fresh[2][3][kMaxEvents];
     size_t fresh_count[2][3] = {};
     SmallNode* const children[2] = {&left, &right};
@@ -83,7 +83,7 @@ class SmallBuilder {
     auto place = [&](int c, size_t i, const Box3& bounds, bool straddles) {
       SmallNode& child = *children[c];
       const uint32_t local = child.count++;
-      if (!straddles) routes[i] = event_route(i, local, c == 0 ? kLeftOnly : kRightOnly);
+      if (!straddles) renumberings[i] = event_renumbering(i, local);
       child.triangles[local] = node.triangles[i];
       child.bounds[local] = bounds;
       if (straddles && with_events)
@@ -106,7 +106,8 @@ class SmallBuilder {
       } else {
         const StraddlerBounds straddler = straddler_bounds(scene_, node.triangles[i], node.bounds[i], child_voxels,
                                                            split.axis, parameters_.perfect_splits);
-        routes[i] = kStraddlerRoute;
+        // Its events are read and dropped: the renumbering only needs to hold a value.
+        renumberings[i] = Event{};
         for (int c = 0; c < 2; ++c)
           if (straddler.reaches[c]) place(c, i, straddler.bounds[c], true);
       }
@@ -121,7 +122,7 @@ class SmallBuilder {
       Event* const to_right = fresh_count[1][axis] == 0 ? right.events[axis] : kept[1];
       Event* l = to_left;
       Event* r = to_right;
-      split_kept_events(node.events[axis], node.event_count[axis], routes, l, r);
+      split_kept_events(node.events[axis], node.event_count[axis], sides, renumberings, l, r);
       Event* const ends[2] = {l, r};
       Event* const starts[2] = {to_left, to_right};
       for (int c = 0; c < 2; ++c) {

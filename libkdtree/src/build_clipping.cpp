@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace kdray::detail {
 namespace {
@@ -49,13 +50,26 @@ bool clip_polygon(const Polygon& in, int axis, double bound, Polygon& out) {
   return true;
 }
 
+// std::nextafter(value, INFINITY) (`up`) or (value, -INFINITY) for a value that is not NaN
+// (nor -INFINITY going down, nor INFINITY going up): the neighbouring bit pattern, without a
+// call into libm for every rounded bound.
+float next_float(float value, bool up) {
+  if (value == 0.0f) return up ? std::numeric_limits<float>::denorm_min() : -std::numeric_limits<float>::denorm_min();
+  uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  // Away from zero is one pattern up for a positive value and for a negative one alike.
+  bits = (value > 0.0f) == up ? bits + 1 : bits - 1;
+  std::memcpy(&value, &bits, sizeof bits);
+  return value;
+}
+
 float round_down(double value) {
   float rounded = static_cast<float>(value);
-  return static_cast<double>(rounded) > value ? std::nextafter(rounded, -INFINITY) : rounded;
+  return static_cast<double>(rounded) > value ? next_float(rounded, false) : rounded;
 }
 float round_up(double value) {
   float rounded = static_cast<float>(value);
-  return static_cast<double>(rounded) < value ? std::nextafter(rounded, INFINITY) : rounded;
+  return static_cast<double>(rounded) < value ? next_float(rounded, true) : rounded;
 }
 
 bool intersect_boxes(const Box3& a, const Box3& b, Box3& out) {

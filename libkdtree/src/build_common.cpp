@@ -87,7 +87,7 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
     const size_t run_start = i;
     uint64_t counts = 0;
     do {
-      counts += kRunCounts[events[i].packed & 3u];
+      counts += kRunCounts[events[i].type()];
       ++i;
     } while (i < count && events[i].position == position);
     const uint64_t leaving_right = counts & 0xffffffffu;

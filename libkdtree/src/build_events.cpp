@@ -23,7 +23,7 @@ namespace {
 constexpr size_t kParallelTriangles = 4096;
 
 // Events as 64-bit integers in the order of operator<: the position's bits made monotone in
-// the high half, the order key in the low half. -0 and +0 are equal positions but different
+// the high half, the packed word in the low half. -0 and +0 are equal positions but different
 // bits, so it does not apply to -0 (has_key is false).
 constexpr uint32_t kSignBit = 0x80000000u;
 inline bool has_key(const Event& event) {
@@ -35,15 +35,14 @@ inline uint64_t event_key(const Event& event) {
   uint32_t bits;
   std::memcpy(&bits, &event.position, sizeof bits);
   const uint32_t monotone = bits & kSignBit ? ~bits : bits | kSignBit;
-  return uint64_t{monotone} << 32 | event_order_key(event.packed);
+  return uint64_t{monotone} << 32 | event.packed;
 }
 inline Event event_of_key(uint64_t key) {
   const uint32_t monotone = static_cast<uint32_t>(key >> 32);
   const uint32_t bits = monotone & kSignBit ? monotone & ~kSignBit : ~monotone;
-  const uint32_t order_key = static_cast<uint32_t>(key);
   Event event;
   std::memcpy(&event.position, &bits, sizeof bits);
-  event.packed = (order_key & kMaxLocalTriangles) << 2 | order_key >> 30;
+  event.packed = static_cast<uint32_t>(key);
   return event;
 }
 

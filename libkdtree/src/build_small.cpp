@@ -91,10 +91,10 @@ class SmallBuilder {
           Event* const events = fresh[c][axis];
           size_t& count = fresh_count[c][axis];
           if (bounds.min[axis] == bounds.max[axis]) {
-            events[count++] = Event{bounds.min[axis], local << 2 | kEventPlanar};
+            events[count++] = event_of(bounds.min[axis], local, kEventPlanar);
           } else {
-            events[count++] = Event{bounds.min[axis], local << 2 | kEventStart};
-            events[count++] = Event{bounds.max[axis], local << 2 | kEventEnd};
+            events[count++] = event_of(bounds.min[axis], local, kEventStart);
+            events[count++] = event_of(bounds.max[axis], local, kEventEnd);
           }
         }
     };

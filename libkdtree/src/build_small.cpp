@@ -34,6 +34,24 @@ void insertion_sort(Event* events, size_t count) {
   }
 }
 
+// classify() from each triangle's bounds instead of its events (the node's events are made
+// from these bounds, so the sides are the same): one pass over the triangles, without a branch
+// on the event type or a store through the triangle index.
+void classify_by_bounds(const Box3* bounds, size_t count, const SplitChoice& split, uint8_t* sides) {
+  const int axis = split.axis;
+  const float plane = split.position;
+  for (size_t i = 0; i < count; ++i) {
+    const float lo = bounds[i].min[axis];
+    const float hi = bounds[i].max[axis];
+    // Equal bounds make one planar event, at `lo`.
+    const bool planar = lo == hi;
+    const bool planar_left = (lo < plane) | ((lo == plane) & split.planar_left);
+    const bool left = planar ? planar_left : hi <= plane;
+    const bool right = planar ? !planar_left : lo >= plane;
+    sides[i] = static_cast<uint8_t>(left * kLeftOnly | right * kRightOnly);
+  }
+}
+
 class SmallBuilder {
  public:
   SmallBuilder(const Scene& scene, const SmallBuildParameters& parameters)
@@ -64,8 +82,7 @@ class SmallBuilder {
   void divide(const SmallNode& node, const SplitChoice& split, SmallNode& left, SmallNode& right) const {
     const size_t n = node.count;
     uint8_t sides[kSmallNodeTriangles];
-    std::fill(sides, sides + n, kBothSides);
-    classify(node.events[split.axis], node.event_count[split.axis], split, sides);
+    classify_by_bounds(node.bounds, n, split, sides);
     const Box3 child_voxels[2] = {below_plane(node.voxel, split.axis, split.position),
                                   above_plane(node.voxel, split.axis, split.position)};
     left.voxel = child_voxels[0];

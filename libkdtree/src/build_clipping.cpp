@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace kdray::detail {
 namespace {
@@ -49,13 +50,26 @@ bool clip_polygon(const Polygon& in, int axis, double bound, Polygon& out) {
   return true;
 }
 
+// std::nextafter(value, INFINITY) (`up`) or (value, -INFINITY) for a value that is not NaN
+// (nor -INFINITY going down, nor INFINITY going up): the neighbouring bit pattern, without a
+// call into libm for every rounded bound.
+float next_float(float value, bool up) {
+  if (value == 0.0f) return up ? std::numeric_limits<float>::denorm_min() : -std::numeric_limits<float>::denorm_min();
+  uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  // Away from zero is one pattern up for a positive value and for a negative one alike.
+  bits = (value > 0.0f) == up ? bits + 1 : bits - 1;
+  std::memcpy(&value, &bits, sizeof bits);
+  return value;
+}
+
 float round_down(double value) {
   float rounded = static_cast<float>(value);
-  return static_cast<double>(rounded) > value ? std::nextafter(rounded, -INFINITY) : rounded;
+  return static_cast<double>(rounded) > value ? next_float(rounded, false) : rounded;
 }
 float round_up(double value) {
   float rounded = static_cast<float>(value);
-  return static_cast<double>(rounded) < value ? std::nextafter(rounded, INFINITY) : rounded;
+  return static_cast<double>(rounded) < value ? next_float(rounded, true) : rounded;
 }
 
 bool intersect_boxes(const Box3& a, const Box3& b, Box3& out) {
@@ -100,18 +114,29 @@ bool contains(const Box3& voxel, const Box3& box) {
   return inside;
 }
 
+// True when `inner` is above `outer` by more than clipping can move a coordinate: each plane
+// clipped rounds a new point's other coordinates by a few units in the last place of the
+// largest of them, and a triangle meets at most six planes; 2^-40 of the magnitude (plus a
+// little for subnormal magnitudes) is far more than that.
+bool clearly_above(float inner, float outer) {
+  const double magnitude = std::max(std::fabs(inner), std::fabs(outer));
+  return static_cast<double>(inner) - outer >= magnitude * 0x1p-40 + 0x1p-1000;
+}
+
 // A triangle clipped to a voxel's planes axis by axis, x to z, min before max (Sutherland-
-// Hodgman in double). Planes that keep the whole polygon are skipped; the current polygon
-// alternates between the two buffers.
+// Hodgman in double). Planes that keep the whole polygon are skipped: those that keep the
+// triangle's bounding box with room to spare without looking at the points (the polygon lies
+// within the box, up to the rounding of the clipping), the others when a look at the points
+// finds all of them inside. The current polygon alternates between the two buffers.
 class ClippedPolygon {
  public:
-  explicit ClippedPolygon(const Corners& corners) {
+  ClippedPolygon(const Corners& corners, const Box3& triangle_box) : triangle_box_(triangle_box) {
     buffers_[0].size = 3;
     for (int corner = 0; corner < 3; ++corner)
       for (int k = 0; k < 3; ++k) buffers_[0].points[corner][k] = corners.point[corner][k];
   }
   // A copy of the current polygon only.
-  ClippedPolygon(const ClippedPolygon& other) {
+  ClippedPolygon(const ClippedPolygon& other) : triangle_box_(other.triangle_box_) {
     const Polygon& polygon = other.buffers_[other.current_];
     buffers_[0].size = polygon.size;
     std::copy(&polygon.points[0][0], &polygon.points[0][0] + 3 * polygon.size, &buffers_[0].points[0][0]);
@@ -120,8 +145,12 @@ class ClippedPolygon {
 
   // Clips by the two planes of `axis` of `voxel`; false when nothing is left.
   bool clip_axis(const Box3& voxel, int axis) {
-    if (clip_polygon<true>(buffers_[current_], axis, voxel.min[axis], buffers_[1 - current_])) current_ = 1 - current_;
-    if (clip_polygon<false>(buffers_[current_], axis, voxel.max[axis], buffers_[1 - current_])) current_ = 1 - current_;
+    if (!clearly_above(triangle_box_.min[axis], voxel.min[axis]) &&
+        clip_polygon<true>(buffers_[current_], axis, voxel.min[axis], buffers_[1 - current_]))
+      current_ = 1 - current_;
+    if (!clearly_above(voxel.max[axis], triangle_box_.max[axis]) &&
+        clip_polygon<false>(buffers_[current_], axis, voxel.max[axis], buffers_[1 - current_]))
+      current_ = 1 - current_;
     return buffers_[current_].size != 0;
   }
 
@@ -142,6 +171,7 @@ class ClippedPolygon {
   }
 
  private:
+  Box3 triangle_box_;
   Polygon buffers_[2];
   int current_ = 0;
 };
@@ -160,7 +190,7 @@ bool triangle_bounds_in_voxel(const Scene& scene, uint32_t triangle, const Box3&
   const Corners corners = corners_of(scene, triangle);
   const Box3 box = bounding_box(corners);
   if (!perfect_splits || contains(voxel, box)) return intersect_boxes(box, voxel, out);
-  ClippedPolygon polygon(corners);
+  ClippedPolygon polygon(corners, box);
   return finish_clipping(polygon, voxel, 0, out);
 }
 
@@ -187,7 +217,7 @@ StraddlerBounds straddler_bounds(const Scene& scene, uint32_t triangle, const Bo
   if (!clipped[0] && !clipped[1]) return result;
   // The planes of the axes before `axis` are the same for both voxels, and so is the polygon
   // they leave.
-  ClippedPolygon shared(corners);
+  ClippedPolygon shared(corners, box);
   for (int k = 0; k < axis; ++k)
     if (!shared.clip_axis(child_voxels[0], k)) return result;  // reaches stays false where clipped
   if (clipped[0]) {

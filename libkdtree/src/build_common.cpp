@@ -48,16 +48,29 @@ Box3 above_plane(const Box3& voxel, int axis, float position) {
 
 
 double CostModel::split_cost(double p_left, double p_right, uint64_t n_left, uint64_t n_right) const {
-  const bool one_side_empty = n_left == 0 || n_right == 0;
-  const double lambda = one_side_empty && p_left != 1.0 && p_right != 1.0 ? empty_bonus : 1.0;
   // Counts are below 2^62: the signed conversion is exact and cheaper than the unsigned one.
-  return lambda * (traversal + intersection * (p_left * static_cast<double>(static_cast<int64_t>(n_left)) +
-                                               p_right * static_cast<double>(static_cast<int64_t>(n_right))));
+  const double cost = traversal + intersection * (p_left * static_cast<double>(static_cast<int64_t>(n_left)) +
+                                                   p_right * static_cast<double>(static_cast<int64_t>(n_right)));
+  // Only the first and last candidates of a sweep can have an empty side: the others skip
+  // choosing lambda (1, whose product is exact).
+  if (n_left != 0 && n_right != 0) return cost;
+  const double lambda = p_left != 1.0 && p_right != 1.0 ? empty_bonus : 1.0;
+  return lambda * cost;
 }
 
 CostModel cost_model_of(const BuildSettings& settings) {
   return CostModel{settings.traversal_cost, settings.intersection_cost, settings.empty_bonus};
 }
+
+namespace {
+
+// What an event adds to the counts of its run of equal positions, by type: ends and planar
+// ones leave the right side at their position (low half), starts and planar ones join the
+// left side after it (high half). A run has fewer than 2^32 events (2 per triangle, fewer
+// than 2^30 triangles), so the halves do not spill into each other.
+constexpr uint64_t kRunCounts[4] = {1, 1 | uint64_t{1} << 32, uint64_t{1} << 32, 0};
+
+}  // namespace
 
 void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, uint64_t triangles,
                 const CostModel& cost, SplitChoice& best) {
@@ -68,21 +81,21 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
   SplitChoice best_here = best;
   size_t i = 0;
   while (i < count) {
-    // Events of one position come ends first, then planar, then starts (the event order), so
-    // counting by type over the run of equal positions gives the three counts without a branch
-    // on the type.
+    // Events of one position come ends first, then planar, then starts (the event order); the
+    // run's counts are one sum, without a branch on the type. Planar events are in both halves.
     const float position = events[i].position;
-    uint64_t ending = 0, planar = 0, starting = 0;
+    const size_t run_start = i;
+    uint64_t counts = 0;
     do {
-      const uint32_t type = events[i].packed & 3u;
-      ending += type == kEventEnd;
-      planar += type == kEventPlanar;
-      starting += type == kEventStart;
+      counts += kRunCounts[events[i].type()];
       ++i;
     } while (i < count && events[i].position == position);
-    n_right -= ending + planar;
+    const uint64_t leaving_right = counts & 0xffffffffu;
+    const uint64_t joining_left = counts >> 32;
+    const uint64_t planar = leaving_right + joining_left - (i - run_start);
+    n_right -= leaving_right;
     consider_split(cost, areas, axis, position, n_left, n_right, planar, best_here);
-    n_left += starting + planar;
+    n_left += joining_left;
   }
   best = best_here;
 }

@@ -15,6 +15,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <new>
 #include <utility>
@@ -68,22 +69,25 @@ CostModel cost_model_of(const BuildSettings& settings);
 
 // One boundary of one triangle on one axis. Sorted by position, then type (end < planar <
 // start: the sweep needs the ends first), then triangle, a total order, so sorted lists
-// are unique and merging equals re-sorting. 8 bytes: the events of a million triangles fit
-// in cache-friendly arrays.
+// are unique and merging equals re-sorting. The type sits above the local triangle index in
+// the packed word, so the packed words compare in that order as plain integers. 8 bytes: the
+// events of a million triangles fit in cache-friendly arrays.
 enum EventType : uint32_t { kEventEnd = 0, kEventPlanar = 1, kEventStart = 2 };
+constexpr uint32_t kMaxLocalTriangles = (1u << 30) - 1u;
 struct Event {
   float position;
-  uint32_t packed;  // local triangle index << 2 | type
-  uint32_t triangle() const { return packed >> 2; }
-  EventType type() const { return static_cast<EventType>(packed & 3u); }
+  uint32_t packed;  // type << 30 | local triangle index
+  uint32_t triangle() const { return packed & kMaxLocalTriangles; }
+  EventType type() const { return static_cast<EventType>(packed >> 30); }
 };
 static_assert(sizeof(Event) == 8, "events are 8 bytes");
-inline uint32_t event_order_key(uint32_t packed) { return (packed & 3u) << 30 | packed >> 2; }
+inline Event event_of(float position, uint32_t local, EventType type) {
+  return Event{position, uint32_t{type} << 30 | local};
+}
 inline bool operator<(const Event& a, const Event& b) {
   if (a.position != b.position) return a.position < b.position;
-  return event_order_key(a.packed) < event_order_key(b.packed);
+  return a.packed < b.packed;
 }
-constexpr uint32_t kMaxLocalTriangles = (1u << 30) - 1u;
 
 // Allocator whose value-less construction leaves the value uninitialised, so resize() of a
 // scratch array that is overwritten anyway costs no zero fill.
@@ -104,10 +108,10 @@ using EventArray = std::vector<Event, UninitialisedAllocator<Event>>;
 template <typename EventVector>
 inline void append_events(EventVector& events, const Box3& bounds, int axis, uint32_t local) {
   if (bounds.min[axis] == bounds.max[axis]) {
-    events.push_back({bounds.min[axis], local << 2 | kEventPlanar});
+    events.push_back(event_of(bounds.min[axis], local, kEventPlanar));
   } else {
-    events.push_back({bounds.min[axis], local << 2 | kEventStart});
-    events.push_back({bounds.max[axis], local << 2 | kEventEnd});
+    events.push_back(event_of(bounds.min[axis], local, kEventStart));
+    events.push_back(event_of(bounds.max[axis], local, kEventEnd));
   }
 }
 
@@ -117,7 +121,7 @@ inline void append_events(EventVector& events, const Box3& bounds, int axis, uin
 inline void merge_events(const Event* a, const Event* a_end, const Event* b, const Event* b_end, Event* out) {
   while (a != a_end && b != b_end) {
     const bool take_b = (b->position < a->position) |
-                        ((b->position == a->position) & (event_order_key(b->packed) < event_order_key(a->packed)));
+                        ((b->position == a->position) & (b->packed < a->packed));
     *out++ = take_b ? *b : *a;
     b += take_b;
     a += !take_b;
@@ -196,6 +200,39 @@ enum Side : uint8_t { kBothSides = 0, kLeftOnly = 1, kRightOnly = 2, kNeitherSid
 // a triangle ending on or below the plane goes left, one starting on or above it right, one in
 // the plane to the chosen side; all others straddle and go to both.
 void classify(const Event* events, size_t count, const SplitChoice& split, uint8_t* sides);
+
+// How a divided node renumbers the kept events of a triangle that only one child gets: an
+// event whose packed word is how much lower the triangle's local index is in that child, and
+// whose position bits are zero.
+inline Event event_renumbering(size_t local, size_t child_local) {
+  return Event{0.0f, static_cast<uint32_t>(local - child_local)};
+}
+
+// Sends each event whose triangle reaches one child only (`sides`) to that child, renumbered
+// (`renumberings`), in order: `left` and `right` advance past what they get. Each event is
+// renumbered as one 8-byte integer: the renumbering's position bits are zero and the local
+// index does not go below zero, so no borrow crosses between the two halves, whichever half
+// the position is in. It does not branch on the side (the sides of neighbouring events are
+// unpredictable): every event is written to both outputs, and each advances only over its own.
+inline void split_kept_events(const Event* events, size_t count, const uint8_t* sides, const Event* renumberings,
+                              Event*& left, Event*& right) {
+  Event* l = left;
+  Event* r = right;
+  for (size_t e = 0; e < count; ++e) {
+    const uint32_t local = events[e].triangle();
+    uint64_t event_bits, renumbering_bits;
+    std::memcpy(&event_bits, &events[e], sizeof event_bits);
+    std::memcpy(&renumbering_bits, &renumberings[local], sizeof renumbering_bits);
+    const uint64_t moved = event_bits - renumbering_bits;
+    std::memcpy(l, &moved, sizeof moved);
+    std::memcpy(r, &moved, sizeof moved);
+    const uint32_t side = sides[local];
+    l += side & kLeftOnly;
+    r += side >> 1;
+  }
+  left = l;
+  right = r;
+}
 
 // A tree or subtree under construction: nodes in depth-first order, near (below) child next,
 // and the leaf-triangle array. Indices are relative to this subtree.

@@ -23,7 +23,7 @@ namespace {
 constexpr size_t kParallelTriangles = 4096;
 
 // Events as 64-bit integers in the order of operator<: the position's bits made monotone in
-// the high half, the order key in the low half. -0 and +0 are equal positions but different
+// the high half, the packed word in the low half. -0 and +0 are equal positions but different
 // bits, so it does not apply to -0 (has_key is false).
 constexpr uint32_t kSignBit = 0x80000000u;
 inline bool has_key(const Event& event) {
@@ -35,15 +35,14 @@ inline uint64_t event_key(const Event& event) {
   uint32_t bits;
   std::memcpy(&bits, &event.position, sizeof bits);
   const uint32_t monotone = bits & kSignBit ? ~bits : bits | kSignBit;
-  return uint64_t{monotone} << 32 | event_order_key(event.packed);
+  return uint64_t{monotone} << 32 | event.packed;
 }
 inline Event event_of_key(uint64_t key) {
   const uint32_t monotone = static_cast<uint32_t>(key >> 32);
   const uint32_t bits = monotone & kSignBit ? monotone & ~kSignBit : ~monotone;
-  const uint32_t order_key = static_cast<uint32_t>(key);
   Event event;
   std::memcpy(&event.position, &bits, sizeof bits);
-  event.packed = (order_key & kMaxLocalTriangles) << 2 | order_key >> 30;
+  event.packed = static_cast<uint32_t>(key);
   return event;
 }
 
@@ -168,14 +167,11 @@ class EventBuilder {
     const size_t n = work.triangles.size();
     // Scratch arrays reused by each thread's nodes: allocation dominated small nodes.
     thread_local std::vector<uint8_t> sides;
-    thread_local std::vector<uint32_t> left_index, right_index;
+    thread_local std::vector<Event> renumberings;
     sides.assign(n, kBothSides);
-    // Only grown, never shrunk: entries of triangles a child does not get are read (and their
-    // events dropped), so they must hold some value, and growing zero-fills only new entries.
-    if (left_index.size() < n) {
-      left_index.resize(n);
-      right_index.resize(n);
-    }
+    // Only grown, never shrunk: straddlers' entries are read too (and their events dropped),
+    // so they must hold some value, and growing value-initialises only new entries.
+    if (renumberings.size() < n) renumberings.resize(n);
     classify(work.events[split.axis].data(), work.events[split.axis].size(), split, sides.data());
     const Box3 child_voxels[2] = {below_plane(work.voxel, split.axis, split.position),
                                   above_plane(work.voxel, split.axis, split.position)};
@@ -190,20 +186,23 @@ class EventBuilder {
     // child bounds come from clipping the triangle itself.
     const bool keep_bounds = !perfect_splits_;
 
-    // Local index of each parent triangle in each child: monotone, so the order of the kept
-    // events survives. Straddlers get fresh bounds and events in each child they really reach.
+    // Each kept triangle's renumbering (local indices are monotone, so the order of the kept
+    // events survives). Straddlers get fresh bounds and events in each child they really
+    // reach.
     thread_local EventArray fresh_left[3], fresh_right[3];
     for (int axis = 0; axis < 3; ++axis) {
       fresh_left[axis].clear();
       fresh_right[axis].clear();
     }
-    auto place = [keep_bounds](NodeWork& child, std::vector<uint32_t>& index, EventArray* fresh, size_t i,
-                               uint32_t triangle, const Box3& bounds) {
-      index[i] = static_cast<uint32_t>(child.triangles.size());
+    auto place = [keep_bounds](NodeWork& child, EventArray* fresh, size_t i, uint32_t triangle,
+                               const Box3& bounds) {
+      const uint32_t local = static_cast<uint32_t>(child.triangles.size());
       child.triangles.push_back(triangle);
       if (keep_bounds) child.bounds.push_back(bounds);
       if (fresh)
-        for (int axis = 0; axis < 3; ++axis) append_events(fresh[axis], bounds, axis, index[i]);
+        for (int axis = 0; axis < 3; ++axis) append_events(fresh[axis], bounds, axis, local);
+      else
+        renumberings[i] = event_renumbering(i, local);
     };
     size_t left_count = 0, right_count = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -219,28 +218,27 @@ class EventBuilder {
       const uint32_t triangle = work.triangles[i];
       const Box3& parent_bounds = keep_bounds ? work.bounds[i] : work.voxel;
       if (sides[i] == kLeftOnly) {
-        place(left, left_index, nullptr, i, triangle, parent_bounds);
+        place(left, nullptr, i, triangle, parent_bounds);
       } else if (sides[i] == kRightOnly) {
-        place(right, right_index, nullptr, i, triangle, parent_bounds);
+        place(right, nullptr, i, triangle, parent_bounds);
       } else {
         const StraddlerBounds straddler =
             straddler_bounds(scene_, triangle, parent_bounds, child_voxels, split.axis, perfect_splits_);
-        if (straddler.reaches[0]) place(left, left_index, fresh_left, i, triangle, straddler.bounds[0]);
-        if (straddler.reaches[1]) place(right, right_index, fresh_right, i, triangle, straddler.bounds[1]);
+        if (straddler.reaches[0]) place(left, fresh_left, i, triangle, straddler.bounds[0]);
+        if (straddler.reaches[1]) place(right, fresh_right, i, triangle, straddler.bounds[1]);
       }
     }
 
     // The three axes are independent; nodes large enough to be worth it split them in
     // parallel (the top of a tree is often a chain of empty-space cuts with no other
     // parallelism). The scratch arrays are this thread's, so they are passed on explicitly.
-    const std::vector<uint8_t>& node_sides = sides;
-    const auto& to_left_index = left_index;
-    const auto& to_right_index = right_index;
+    const uint8_t* const node_sides = sides.data();
+    const Event* const node_renumberings = renumberings.data();
     EventArray* const fresh_to_left = fresh_left;
     EventArray* const fresh_to_right = fresh_right;
     auto split_axis = [&](int axis, EventArray& kept_left, EventArray& kept_right) {
-      split_events(work.events[axis], node_sides, to_left_index.data(), to_right_index.data(), fresh_to_left[axis],
-                   fresh_to_right[axis], kept_left, kept_right, left.events[axis], right.events[axis]);
+      split_events(work.events[axis], node_sides, node_renumberings, fresh_to_left[axis], fresh_to_right[axis],
+                   kept_left, kept_right, left.events[axis], right.events[axis]);
     };
     if (n >= kParallelTriangles) {
       // Isolated: while it waits for the axes, this thread must not take up another node's
@@ -258,30 +256,18 @@ class EventBuilder {
   }
 
   // Sends each event of one axis whose triangle goes to only one side to that child, then
-  // merges in the child's re-clipped (fresh) events. It does not branch on the side (the
-  // sides of neighbouring events are unpredictable): every event is written to both outputs,
-  // and each output advances only over its own. Kept events go straight to the child when
+  // merges in the child's re-clipped (fresh) events. Kept events go straight to the child when
   // there is nothing to merge in.
-  static void split_events(const EventArray& events, const std::vector<uint8_t>& sides,
-                           const uint32_t* left_index, const uint32_t* right_index,
-                           EventArray& fresh_left, EventArray& fresh_right,
-                           EventArray& kept_left, EventArray& kept_right,
-                           EventArray& left_events, EventArray& right_events) {
+  static void split_events(const EventArray& events, const uint8_t* sides, const Event* renumberings,
+                           EventArray& fresh_left, EventArray& fresh_right, EventArray& kept_left,
+                           EventArray& kept_right, EventArray& left_events, EventArray& right_events) {
     EventArray& to_left = fresh_left.empty() ? left_events : kept_left;
     EventArray& to_right = fresh_right.empty() ? right_events : kept_right;
     to_left.resize(events.size());
     to_right.resize(events.size());
     Event* l = to_left.data();
     Event* r = to_right.data();
-    for (const Event& event : events) {
-      const uint32_t local = event.triangle();
-      const uint32_t type = event.packed & 3u;
-      const uint8_t side = sides[local];
-      *l = Event{event.position, left_index[local] << 2 | type};
-      *r = Event{event.position, right_index[local] << 2 | type};
-      l += side == kLeftOnly;
-      r += side == kRightOnly;
-    }
+    split_kept_events(events.data(), events.size(), sides, renumberings, l, r);
     to_left.resize(static_cast<size_t>(l - to_left.data()));
     to_right.resize(static_cast<size_t>(r - to_right.data()));
     merge_fresh(kept_left, fresh_left, left_events);

@@ -34,6 +34,24 @@ void insertion_sort(Event* events, size_t count) {
   }
 }
 
+// classify() from each triangle's bounds instead of its events (the node's events are made
+// from these bounds, so the sides are the same): one pass over the triangles, without a branch
+// on the event type or a store through the triangle index.
+void classify_by_bounds(const Box3* bounds, size_t count, const SplitChoice& split, uint8_t* sides) {
+  const int axis = split.axis;
+  const float plane = split.position;
+  for (size_t i = 0; i < count; ++i) {
+    const float lo = bounds[i].min[axis];
+    const float hi = bounds[i].max[axis];
+    // Equal bounds make one planar event, at `lo`.
+    const bool planar = lo == hi;
+    const bool planar_left = (lo < plane) | ((lo == plane) & split.planar_left);
+    const bool left = planar ? planar_left : hi <= plane;
+    const bool right = planar ? !planar_left : lo >= plane;
+    sides[i] = static_cast<uint8_t>(left * kLeftOnly | right * kRightOnly);
+  }
+}
+
 class SmallBuilder {
  public:
   SmallBuilder(const Scene& scene, const SmallBuildParameters& parameters)
@@ -64,8 +82,7 @@ class SmallBuilder {
   void divide(const SmallNode& node, const SplitChoice& split, SmallNode& left, SmallNode& right) const {
     const size_t n = node.count;
     uint8_t sides[kSmallNodeTriangles];
-    std::fill(sides, sides + n, kBothSides);
-    classify(node.events[split.axis], node.event_count[split.axis], split, sides);
+    classify_by_bounds(node.bounds, n, split, sides);
     const Box3 child_voxels[2] = {below_plane(node.voxel, split.axis, split.position),
                                   above_plane(node.voxel, split.axis, split.position)};
     left.voxel = child_voxels[0];
@@ -73,9 +90,9 @@ class SmallBuilder {
     left.depth = right.depth = node.depth + 1;
     left.count = right.count = 0;
 
-    // Local index of each parent triangle in each child (monotone, so kept events stay
+    // Each kept triangle's renumbering (local indices are monotone, so kept events stay
     // sorted); straddlers get fresh bounds, and fresh events in each child they reach.
-    uint32_t left_index[kSmallNodeTriangles], right_index[kSmallNodeTriangles];
+    Event renumberings[kSmallNodeTriangles];
     Event fresh[2][3][kMaxEvents];
     size_t fresh_count[2][3] = {};
     SmallNode* const children[2] = {&left, &right};
@@ -83,7 +100,7 @@ class SmallBuilder {
     auto place = [&](int c, size_t i, const Box3& bounds, bool straddles) {
       SmallNode& child = *children[c];
       const uint32_t local = child.count++;
-      (c == 0 ? left_index : right_index)[i] = local;
+      if (!straddles) renumberings[i] = event_renumbering(i, local);
       child.triangles[local] = node.triangles[i];
       child.bounds[local] = bounds;
       if (straddles && with_events)
@@ -91,17 +108,14 @@ class SmallBuilder {
           Event* const events = fresh[c][axis];
           size_t& count = fresh_count[c][axis];
           if (bounds.min[axis] == bounds.max[axis]) {
-            events[count++] = Event{bounds.min[axis], local << 2 | kEventPlanar};
+            events[count++] = event_of(bounds.min[axis], local, kEventPlanar);
           } else {
-            events[count++] = Event{bounds.min[axis], local << 2 | kEventStart};
-            events[count++] = Event{bounds.max[axis], local << 2 | kEventEnd};
+            events[count++] = event_of(bounds.min[axis], local, kEventStart);
+            events[count++] = event_of(bounds.max[axis], local, kEventEnd);
           }
         }
     };
     for (size_t i = 0; i < n; ++i) {
-      // The event split below reads both indices of every triangle, so both hold a value.
-      left_index[i] = left.count;
-      right_index[i] = right.count;
       if (sides[i] == kLeftOnly) {
         place(0, i, node.bounds[i], false);
       } else if (sides[i] == kRightOnly) {
@@ -109,6 +123,8 @@ class SmallBuilder {
       } else {
         const StraddlerBounds straddler = straddler_bounds(scene_, node.triangles[i], node.bounds[i], child_voxels,
                                                            split.axis, parameters_.perfect_splits);
+        // Its events are read and dropped: the renumbering only needs to hold a value.
+        renumberings[i] = Event{};
         for (int c = 0; c < 2; ++c)
           if (straddler.reaches[c]) place(c, i, straddler.bounds[c], true);
       }
@@ -116,24 +132,14 @@ class SmallBuilder {
 
     // Children at the depth limit become leaves whatever their events say: they get none.
     if (!with_events) return;
-    // Each event goes to the child its triangle alone reaches, without a branch on the side:
-    // it is written to both and each child's cursor advances only over its own. Straddlers'
-    // fresh events are then merged in (the kept ones go straight to the child without any).
+    // Kept events go straight to the child when it has no fresh ones to merge in.
     for (int axis = 0; axis < 3; ++axis) {
       Event kept[2][kMaxEvents];
       Event* const to_left = fresh_count[0][axis] == 0 ? left.events[axis] : kept[0];
       Event* const to_right = fresh_count[1][axis] == 0 ? right.events[axis] : kept[1];
       Event* l = to_left;
       Event* r = to_right;
-      const Event* const events = node.events[axis];
-      for (size_t e = 0; e < node.event_count[axis]; ++e) {
-        const uint32_t local = events[e].triangle();
-        const uint32_t type = events[e].packed & 3u;
-        *l = Event{events[e].position, left_index[local] << 2 | type};
-        *r = Event{events[e].position, right_index[local] << 2 | type};
-        l += sides[local] == kLeftOnly;
-        r += sides[local] == kRightOnly;
-      }
+      split_kept_events(node.events[axis], node.event_count[axis], sides, renumberings, l, r);
       Event* const ends[2] = {l, r};
       Event* const starts[2] = {to_left, to_right};
       for (int c = 0; c < 2; ++c) {

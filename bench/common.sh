@@ -11,7 +11,8 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BUILD=$(realpath "${BUILD:-$ROOT/build}")
 CORPUS=$(realpath -m "${CORPUS:-$ROOT/../shared/corpus}")
 YARDSTICKS=$(realpath -m "${YARDSTICKS:-$ROOT/../shared/yardsticks}")
-MITSUBA_PYTHON=$(realpath -m "${MITSUBA_PYTHON:-$ROOT/../venv-mitsuba/bin/python}")
+# -s: a venv's python is a symbolic link to the base interpreter; resolved, it loses the venv.
+MITSUBA_PYTHON=$(realpath -ms "${MITSUBA_PYTHON:-$ROOT/../venv-mitsuba/bin/python}")
 KDCONVERT=$BUILD/tools/kdconvert/kdconvert
 KDBUILD=$BUILD/tools/kdbuild/kdbuild
 KDRENDER=$BUILD/tools/kdrender/kdrender

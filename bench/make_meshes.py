@@ -86,6 +86,17 @@ BOX_TRIANGLES = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1
                  (2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
 
 
+def add_box(positions, faces, cx, cz, sx, sy, sz, turn):
+    """A box of size sx, sy, sz standing on y = 0 at (cx, cz), turned by `turn` about +y."""
+    c, s = math.cos(turn), math.sin(turn)
+    base = len(positions) // 3
+    for x, y, z in BOX_CORNERS:
+        lx, lz = (x - 0.5) * sx, (z - 0.5) * sz
+        positions.extend((cx + c * lx - s * lz, y * sy, cz + s * lx + c * lz))
+    for t in BOX_TRIANGLES:
+        faces.extend((base + t[0], base + t[1], base + t[2]))
+
+
 def city(rng, lots=316):
     """One box per lot of a lots x lots grid, filling 50-95% of it, a third turned about +y."""
     positions, faces = array("f"), array("i")
@@ -99,12 +110,7 @@ def city(rng, lots=316):
             c, s = math.cos(turn), math.sin(turn)
             if turn:  # a turned box fits its lot
                 sx, sz = sx / (c + s), sz / (c + s)
-            base = len(positions) // 3
-            for x, y, z in BOX_CORNERS:
-                lx, lz = (x - 0.5) * sx, (z - 0.5) * sz
-                positions.extend((cx + c * lx - s * lz, y * sy, cz + s * lx + c * lz))
-            for t in BOX_TRIANGLES:
-                faces.extend((base + t[0], base + t[1], base + t[2]))
+            add_box(positions, faces, cx, cz, sx, sy, sz, turn)
     return positions, faces
 
 
@@ -117,13 +123,7 @@ def sticks(rng, boxes=100000):
         sy = math.exp(rng.uniform(math.log(0.002), math.log(0.1)))
         cx, cz = rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5)
         turn = rng.uniform(0, math.pi / 2) if rng.random() < 1 / 3 else 0.0
-        c, s = math.cos(turn), math.sin(turn)
-        base = len(positions) // 3
-        for x, y, z in BOX_CORNERS:
-            lx, lz = (x - 0.5) * sx, (z - 0.5) * sz
-            positions.extend((cx + c * lx - s * lz, y * sy, cz + s * lx + c * lz))
-        for t in BOX_TRIANGLES:
-            faces.extend((base + t[0], base + t[1], base + t[2]))
+        add_box(positions, faces, cx, cz, sx, sy, sz, turn)
     return positions, faces
 
 

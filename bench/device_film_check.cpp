@@ -1,16 +1,18 @@
 // device_film_check SCENE.kdscene SCENE.kdtree DEVICE_A DEVICE_B [--wavefront] [--size N] [--spp N]
-//                   [--camera PX,PY,PZ,TX,TY,TZ,FOV] [--traversal-a fast|robust] [--traversal-b fast|robust]
+//                   [--camera PX,PY,PZ,TX,TY,TZ,FOV] [--traversal-a auto|fast|robust] [--traversal-b auto|fast|robust]
 // Renders one image on two devices (--device names: host, cpu, gpu, an index) and compares the
 // films' fixed-point sums exactly, the film that merges bit for bit across devices (film.h);
 // prints one JSON line: each device's times, how many sums differ, the largest difference and
 // where the first one is. Needs no image codec, so it runs from a bundle of a few binaries
 // (scripts/gpu-check.sh). --wavefront renders DEVICE_A's image with the wavefront kernels and
 // DEVICE_B's with the megakernel, which the host alone has and which gives the same film
-// (determinism_test.cpp). --traversal-a/-b name a device's traversal (default: the device's own),
-// so that one device can be compared with itself. Exit status: 0 bit for bit the same; 3 the films differ; 1 failure; 2 usage.
+// (determinism_test.cpp). --traversal-a/-b name a device's traversal (fast or robust; auto, the
+// default: the device's own), so that one device can be compared with itself. Exit status: 0 bit
+// for bit the same; 3 the films differ; 1 failure; 2 usage.
 #include <kdray/kdtree.h>
 #include <kdray/render.h>
 #include <kdray/scene_file.h>
+#include <kdray/trace_opencl.h>
 
 #include <nlohmann/json.hpp>
 
@@ -46,16 +48,10 @@ nlohmann::json device_report(const std::string& selection, const kdray::RenderSt
 
 }  // namespace
 
-kdray::TraversalPath parse_traversal(const std::string& name) {
-  if (name == "fast") return kdray::TraversalPath::FastWhereSafe;
-  if (name == "robust") return kdray::TraversalPath::Robust;
-  throw std::invalid_argument("--traversal-a and --traversal-b want fast or robust");
-}
-
 int main(int argc, char** argv) {
   if (argc < 5) {
     std::cerr << "usage: device_film_check SCENE.kdscene SCENE.kdtree DEVICE_A DEVICE_B [--wavefront] [--size N] "
-                 "[--spp N] [--camera PX,PY,PZ,TX,TY,TZ,FOV] [--traversal-a fast|robust] [--traversal-b fast|robust]\n";
+                 "[--spp N] [--camera PX,PY,PZ,TX,TY,TZ,FOV] [--traversal-a auto|fast|robust] [--traversal-b auto|fast|robust]\n";
     return 2;
   }
   try {
@@ -75,9 +71,9 @@ int main(int argc, char** argv) {
       } else if (flag == "--camera" && has_value) {
         settings.camera = parse_camera(argv[++i]);
       } else if (flag == "--traversal-a" && has_value) {
-        a.traversal = parse_traversal(argv[++i]);
+        a.traversal = kdray::parse_traversal_path(argv[++i]);
       } else if (flag == "--traversal-b" && has_value) {
-        b.traversal = parse_traversal(argv[++i]);
+        b.traversal = kdray::parse_traversal_path(argv[++i]);
       } else {
         std::cerr << "device_film_check: error: unknown or incomplete option " << flag << "\n";
         return 2;

@@ -2,6 +2,7 @@
 #include "device_scene.h"
 
 #include <kdray/clock.h>
+#include <kdray/error.h>
 #include <kdray/trace_opencl.h>
 #include <kdray/traverse.h>
 
@@ -29,6 +30,13 @@ std::string traversal_path_option(TraversalPath path) {
 }
 
 const char* traversal_path_name(TraversalPath path) { return path == TraversalPath::Robust ? "robust" : "fast"; }
+
+std::optional<TraversalPath> parse_traversal_path(const std::string& name) {
+  if (name == "auto") return std::nullopt;
+  for (TraversalPath path : {TraversalPath::FastWhereSafe, TraversalPath::Robust})
+    if (name == traversal_path_name(path)) return path;
+  throw Error("", "unknown traversal '" + name + "': auto, fast or robust");
+}
 
 TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu) {
   const TraversalPath traversal = traversal_path_for(device, gpu);

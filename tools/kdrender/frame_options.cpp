@@ -2,6 +2,7 @@
 
 #include <kdray/clock.h>
 #include <kdray/image_io.h>
+#include <kdray/trace_opencl.h>
 #include <kdray/util.h>
 
 #include <device_option.h>
@@ -173,9 +174,7 @@ Frame resolve_frame(const FrameOptions& o, EnvironmentCache& environments) {
   if (o.output.empty()) throw UsageError("-o OUTPUT is required");
   if (!kdray::is_supported_image_path(o.output)) throw UsageError("-o " + o.output + ": use .exr, .png or .jpg");
   Frame frame{o.output, o.settings, o.device, 0};
-  if (o.traversal != "auto") {
-    frame.device.traversal = o.traversal == "robust" ? kdray::TraversalPath::Robust : kdray::TraversalPath::FastWhereSafe;
-  }
+  frame.device.traversal = kdray::parse_traversal_path(o.traversal);
   kdray::RenderSettings& s = frame.settings;
   apply_aovs(o, s);
   apply_camera(o, s);

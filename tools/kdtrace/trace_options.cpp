@@ -1,5 +1,7 @@
 #include "trace_options.h"
 
+#include <kdray/trace_opencl.h>
+
 namespace kdtrace {
 
 using kdray::tool::UsageError;
@@ -52,8 +54,7 @@ kdray::tool::DeviceKind checked_device(const Options& o) {
 
 kdray::DeviceSelection opencl_selection(const Options& o) {
   kdray::DeviceSelection device = o.opencl_device;
-  if (o.path_name != "auto")
-    device.traversal = o.path_name == "robust" ? kdray::TraversalPath::Robust : kdray::TraversalPath::FastWhereSafe;
+  device.traversal = kdray::parse_traversal_path(o.path_name);
   return device;
 }
 
@@ -62,7 +63,7 @@ kdray::TraceOptions traversal_options(const Options& o, bool host) {
   options.stack = o.stack_name == "depth1" ? kdray::TraversalStack::Depth1
                   : o.stack_name == "full" ? kdray::TraversalStack::Full
                                            : kdray::TraversalStack::Short;
-  options.path = o.path_name == "robust" ? kdray::TraversalPath::Robust : kdray::TraversalPath::FastWhereSafe;
+  options.path = kdray::parse_traversal_path(o.path_name).value_or(kdray::TraversalPath::FastWhereSafe);
   if (host && options.path == kdray::TraversalPath::Robust && options.stack != kdray::TraversalStack::Short)
     throw UsageError("--traversal robust on the host: with --stack short only");
   return options;

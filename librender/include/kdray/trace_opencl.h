@@ -8,6 +8,8 @@
 
 #include <kernels/kd_types.h>
 
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace kdray {
@@ -32,6 +34,9 @@ TraversalPath traversal_path_for(const DeviceSelection& device, bool gpu);
 std::string traversal_path_option(TraversalPath path);
 // "fast" or "robust", as the tools' --traversal and --json name them.
 const char* traversal_path_name(TraversalPath path);
+// The path a --traversal value names: "fast" or "robust"; "auto" is none (the device's own).
+// Throws kdray::Error for any other name.
+std::optional<TraversalPath> parse_traversal_path(const std::string& name);
 
 // DeviceSelection::short_stack_size for a traversal stack: Depth1 one entry, Full as deep as a
 // tree can be (never restarts), Short 0, the kernel's default KD_SHORT_STACK_SIZE as on the CPU.

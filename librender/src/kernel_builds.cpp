@@ -9,8 +9,7 @@ namespace kdray {
 
 std::vector<KernelBuild> gpu_kernel_builds(const Scene& scene, const RenderSettings& settings) {
   const std::string device_options = " " + device_build_options(CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT);
-  const std::string render_options = kernel_feature_options(scene, settings, DeviceSelection{}) +
-                                     traversal_path_option(traversal_path_for(DeviceSelection{}, true)) + device_options;
+  const std::string render_options = kernel_feature_options(scene, settings, DeviceSelection{}, true) + device_options;
   DeviceSelection full_stack;
   full_stack.short_stack_size = kernel_stack_size(TraversalStack::Full);
   return {{"megakernel", "pt_megakernel.cl", render_options},

@@ -3,6 +3,7 @@
 #include "render_internal.h"
 
 #include <kdray/render.h>
+#include <kdray/trace_opencl.h>
 
 #include <string>
 #include <utility>
@@ -36,7 +37,7 @@ uint32_t kernel_feature_bits(const Scene& scene, const RenderSettings& settings,
   return bits;
 }
 
-std::string kernel_feature_options(uint32_t feature_bits, const DeviceSelection& device) {
+std::string kernel_feature_options(uint32_t feature_bits, const DeviceSelection& device, bool gpu) {
   static const std::pair<uint32_t, const char*> kDefines[] = {
       {PT_FEATURE_EMISSION, "KD_FEATURE_EMISSION"},
       {PT_FEATURE_MIRROR, "KD_FEATURE_MIRROR"},
@@ -57,14 +58,14 @@ std::string kernel_feature_options(uint32_t feature_bits, const DeviceSelection&
   std::string options = "-cl-std=CL1.2";
   for (const auto& [bit, name] : kDefines)
     if (feature_bits & bit) options += std::string(" -D") + name;
-  if (device.short_stack_size) options += " -DKD_SHORT_STACK_SIZE=" + std::to_string(device.short_stack_size);
-  return options;
+  return options + traversal_build_options(device, gpu);
 }
 
-std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device) {
+std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device,
+                                   bool gpu) {
   const Camera camera = render_camera(scene, settings);
   const uint32_t bits = kernel_feature_bits(scene, settings, camera, render_environment(scene, settings).get());
-  return kernel_feature_options(bits, device);
+  return kernel_feature_options(bits, device, gpu);
 }
 
 }  // namespace kdray

@@ -158,9 +158,8 @@ std::unique_ptr<RenderWorker> prepare_device(const Scene& scene, const KdTree& t
   cl::Runtime& runtime = cl::runtime_for(device);
   RenderStats stats;
   stats.device = runtime.info().name;
-  const TraversalPath traversal = traversal_path_for(device, runtime.info().is_gpu);
-  stats.kernel_options = kernel_feature_options(render.feature_bits, device) + traversal_path_option(traversal);
-  stats.traversal = traversal_path_name(traversal);
+  stats.kernel_options = kernel_feature_options(render.feature_bits, device, runtime.info().is_gpu);
+  stats.traversal = traversal_path_name(traversal_path_for(device, runtime.info().is_gpu));
   stats.default_light = render.environment && !settings.environment;
   const bool wavefront = settings.form == RenderForm::Wavefront;
   cl::ProgramBuild build = runtime.program(wavefront ? "pt_wavefront.cl" : "pt_megakernel.cl", stats.kernel_options);

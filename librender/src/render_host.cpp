@@ -127,7 +127,7 @@ std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tre
   RenderStats& stats = host->stats;
   stats.device = kHostDevice;
   // Every feature compiled in; the scene's own, as an OpenCL build would name them, gate them.
-  const std::string options = kernel_feature_options(render.feature_bits, DeviceSelection{});
+  const std::string options = kernel_feature_options(render.feature_bits, DeviceSelection{}, false);
   const size_t defines = options.find(" -D");
   stats.kernel_options = "-DKD_ALL_FEATURES" + (defines == std::string::npos ? "" : options.substr(defines));
   stats.default_light = render.environment && !render.settings.environment;

@@ -45,10 +45,10 @@ struct ResolvedRender {
 ResolvedRender resolve_render(const Scene& scene, const RenderSettings& requested);
 
 // The PT_FEATURE_* bits of a render (kernels/pt_codes.h): what its kernel is built with
-// (kernel_features.cpp), and their build options on `device`.
+// (kernel_features.cpp), and their build options on `device`, a GPU or not.
 uint32_t kernel_feature_bits(const Scene& scene, const RenderSettings& settings, const Camera& camera,
                              const Environment* environment);
-std::string kernel_feature_options(uint32_t feature_bits, const DeviceSelection& device);
+std::string kernel_feature_options(uint32_t feature_bits, const DeviceSelection& device, bool gpu);
 
 // The camera as the kernels' parameters for a width x height image (render_view.cpp).
 void set_camera(PtRenderParams& params, const Camera& camera, uint32_t width, uint32_t height);

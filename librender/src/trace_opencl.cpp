@@ -25,8 +25,11 @@ TraversalPath traversal_path_for(const DeviceSelection& device, bool gpu) {
   return gpu ? TraversalPath::Robust : TraversalPath::FastWhereSafe;
 }
 
-std::string traversal_path_option(TraversalPath path) {
-  return path == TraversalPath::Robust ? " -DKD_TRAVERSAL_ROBUST_ONLY" : "";
+std::string traversal_build_options(const DeviceSelection& device, bool gpu) {
+  std::string options;
+  if (device.short_stack_size) options += " -DKD_SHORT_STACK_SIZE=" + std::to_string(device.short_stack_size);
+  if (traversal_path_for(device, gpu) == TraversalPath::Robust) options += " -DKD_TRAVERSAL_ROBUST_ONLY";
+  return options;
 }
 
 const char* traversal_path_name(TraversalPath path) { return path == TraversalPath::Robust ? "robust" : "fast"; }
@@ -40,9 +43,7 @@ std::optional<TraversalPath> parse_traversal_path(const std::string& name) {
 
 TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu) {
   const TraversalPath traversal = traversal_path_for(device, gpu);
-  std::string options = "-cl-std=CL1.2";
-  if (device.short_stack_size) options += " -DKD_SHORT_STACK_SIZE=" + std::to_string(device.short_stack_size);
-  options += traversal_path_option(traversal);
+  const std::string options = "-cl-std=CL1.2" + traversal_build_options(device, gpu);
   // One ray per work-item everywhere: a GPU vectorises across work-items. On a CPU device
   // (PoCL) each work-item runs as scalar code and waits on its node fetches, so the far child
   // of a split is prefetched when pushed; GPU compilers need not know __builtin_prefetch.

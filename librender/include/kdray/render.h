@@ -39,8 +39,10 @@ Film render(const Scene& scene, const KdTree& tree, const RenderSettings& settin
             const DeviceSelection& device, RenderStats* stats = nullptr, const RenderProgress& progress = {});
 
 // The OpenCL build options (feature defines) for a scene: only what it uses, so a diffuse-only
-// scene compiles a diffuse-only kernel.
-std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device);
+// scene compiles a diffuse-only kernel; with the traversal a GPU (gpu) or a CPU device gets
+// (traversal_path_for, trace_opencl.h).
+std::string kernel_feature_options(const Scene& scene, const RenderSettings& settings, const DeviceSelection& device,
+                                   bool gpu = false);
 
 // The camera from settings, the scene or default_camera(scene bounds), with settings.fov_degrees
 // applied, checked (finite, non-degenerate, 0 < fov < 180, a positive orthographic extent).

@@ -30,8 +30,10 @@ struct TraceOpenClStats {
 // leave it, cost more in registers and divergence than its lean step saves; a CPU runs one ray
 // at a time and gains the lean step (bench/LOG.md, "GPU check").
 TraversalPath traversal_path_for(const DeviceSelection& device, bool gpu);
-// The build option that selects `path` (KD_TRAVERSAL_ROBUST_ONLY), with a leading space, or "".
-std::string traversal_path_option(TraversalPath path);
+// The traversal's build options for a device, each with a leading space: its short stack's size
+// (KD_SHORT_STACK_SIZE, when set) and its path (KD_TRAVERSAL_ROBUST_ONLY for the robust one).
+// Every program that traverses (kd_trace.cl and the render kernels) is built with them.
+std::string traversal_build_options(const DeviceSelection& device, bool gpu);
 // "fast" or "robust", as the tools' --traversal and --json name them.
 const char* traversal_path_name(TraversalPath path);
 // The path a --traversal value names: "fast" or "robust"; "auto" is none (the device's own).

@@ -28,7 +28,7 @@ struct TraceOpenClStats {
 // alone on a GPU, the fast path where it applies on a CPU device. Both give the same hits bit
 // for bit. On a GPU the fast path's second code path, and the robust re-trace of the rays that
 // leave it, cost more in registers and divergence than its lean step saves; a CPU runs one ray
-// at a time and gains the lean step (bench/LOG.md, "GPU check").
+// at a time and gains the lean step (bench/LOG.md, "The traversal chosen per device").
 TraversalPath traversal_path_for(const DeviceSelection& device, bool gpu);
 // The traversal's build options for a device, each with a leading space: its short stack's size
 // (KD_SHORT_STACK_SIZE, when set) and its path (KD_TRAVERSAL_ROBUST_ONLY for the robust one).

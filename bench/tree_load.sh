@@ -4,7 +4,8 @@
 # /dev/null (a read from the page cache into one small, reused buffer) and against a read of each
 # file into a fresh buffer of its size (what any loader that does not map the file pays for the
 # memory). Medians of $RUNS runs, interleaved; the files are read once before, so all come from
-# the page cache. BASELINE=other/build adds that build's kdtrace to every run.
+# the page cache. BASELINE=other/build adds that build's kdtrace to every run, with a tree that
+# build's kdbuild wrote (the tree format may differ between the two).
 #   BUILD=build RUNS=7 bench/tree_load.sh [MESH...]     (default: large/bunny_sub2.ply)
 set -euo pipefail
 . "$(dirname "$0")/common.sh"
@@ -33,14 +34,17 @@ machine_line
 printf "%-14s %9s %9s %9s %9s %9s %9s %9s\n" mesh "MB" "ready s" "before s" "start s" "cat s" "fresh s" "ready/cat"
 for mesh in "${meshes[@]}"; do
   name=$(basename "${mesh%.*}")
-  [[ -f "$WORK/$name.kdtree" ]] || scene_files "$CORPUS/$mesh" "$name"
+  [[ -f "$WORK/$name.kdtree" ]] || scene_files "$(corpus_file "$mesh")" "$name"
   files=("$WORK/$name.kdscene" "$WORK/$name.kdtree")
+  baseline_files=("$WORK/$name.kdscene" "$WORK/$name.baseline.kdtree")
+  [[ -z "$baseline" || -f "${baseline_files[1]}" ]] ||
+    "$baseline/tools/kdbuild/kdbuild" "${baseline_files[@]}" > /dev/null
   cat "${files[@]}" > /dev/null
   ready=() before=() start=() plain=() fresh=()
   for ((run = 0; run < runs; ++run)); do
     ready+=("$(seconds "$KDTRACE" "${files[@]}" --generate random --count 1 --quiet)")
     [[ -z "$baseline" ]] ||
-      before+=("$(seconds "$baseline/tools/kdtrace/kdtrace" "${files[@]}" --generate random --count 1 --quiet)")
+      before+=("$(seconds "$baseline/tools/kdtrace/kdtrace" "${baseline_files[@]}" --generate random --count 1 --quiet)")
     start+=("$(seconds "$KDTRACE" --version)")
     plain+=("$(seconds cat "${files[@]}")")
     fresh+=("$(seconds fresh_read "${files[@]}")")

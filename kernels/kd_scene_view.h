@@ -12,12 +12,8 @@
 #define KD_SHORT_STACK_SIZE 8
 #endif
 
-/* The corners a, b, c of the triangle of leaf entry i (leaf_triangles[i]) are
- * leaf_vertices[KD_TRIANGLE_FLOATS * i + 3 * corner + axis]: copies of the scene's positions
- * gathered once by the host in leaf order, so that the triangles of a leaf are one contiguous
- * read instead of an index load and a 36-byte fetch from elsewhere per triangle. A triangle in
- * several leaves is copied once per leaf: the copy is larger than one per triangle (by the
- * tree's references per triangle), and a ray fetches fewer cache lines. */
+/* Floats of one triangle's three corners (KdLeafTriangle.corners; the shading copy of the
+ * corners, one per triangle in scene order, has the same layout). */
 #define KD_TRIANGLE_FLOATS 9u
 
 /* Work counters of one traversal (kdtrace --json, bench/): compiled in only where
@@ -34,8 +30,7 @@ typedef struct KdTraversalCounters {
 
 typedef struct KdSceneView {
   KD_GLOBAL const KdNode* nodes;
-  KD_GLOBAL const kd_u32* leaf_triangles;
-  KD_GLOBAL const float* leaf_vertices;
+  KD_GLOBAL const KdLeafTriangle* leaf_triangles;
   float bounds_min[3], bounds_max[3];
 #ifdef KD_EMPTY_LEAF_BITS
   KD_GLOBAL const kd_u32* empty_leaves; /* bit n % 32 of word n / 32: node n is an empty leaf */
@@ -51,12 +46,10 @@ typedef struct KdSceneView {
  * arrays). empty_leaves is kept only where KD_EMPTY_LEAF_BITS is defined (pass 0 elsewhere);
  * counters start null: a counting build points them at its own totals. */
 KD_INLINE KdSceneView kd_scene_view(KD_GLOBAL const KdNode* nodes, KD_GLOBAL const kd_u32* empty_leaves,
-                                    KD_GLOBAL const kd_u32* leaf_triangles, KD_GLOBAL const float* leaf_vertices,
-                                    float min_x, float min_y, float min_z, float max_x, float max_y, float max_z) {
+                                    KD_GLOBAL const KdLeafTriangle* leaf_triangles, float min_x, float min_y, float min_z, float max_x, float max_y, float max_z) {
   KdSceneView view;
   view.nodes = nodes;
   view.leaf_triangles = leaf_triangles;
-  view.leaf_vertices = leaf_vertices;
   view.bounds_min[0] = min_x;
   view.bounds_min[1] = min_y;
   view.bounds_min[2] = min_z;
@@ -109,13 +102,13 @@ KD_HOT_INLINE int kd_intersect_leaf(const KdSceneView* scene, const KdRay* ray, 
   KD_COUNT(scene, leaves, 1);
   KD_COUNT(scene, triangle_tests, count);
   for (kd_u32 i = 0; i < count; ++i) {
-    const kd_u32 triangle = scene->leaf_triangles[first + i];
-    KD_GLOBAL const float* corners = scene->leaf_vertices + KD_TRIANGLE_FLOATS * (first + i);
+    KD_GLOBAL const KdLeafTriangle* entry = scene->leaf_triangles + first + i;
+    KD_GLOBAL const float* corners = entry->corners;
     float t, u, v;
     if (kd_ray_triangle_line(ray, corners, corners + 3, corners + 6, &t, &u, &v) && t > ray->tmin &&
-        kd_hit_precedes(t, triangle, hit)) {
+        kd_hit_precedes(t, entry->triangle, hit)) {
       hit->t = t;
-      hit->triangle = triangle;
+      hit->triangle = entry->triangle;
       hit->u = u;
       hit->v = v;
       found = 1;

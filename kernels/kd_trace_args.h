@@ -8,15 +8,14 @@
 #ifndef KD_TRACE_ARGS_H
 #define KD_TRACE_ARGS_H
 
-#define KD_TRACE_ARGS(GEOMETRY, BUFFER, VALUE) \
-  GEOMETRY(const KdNode, nodes)                \
-  BUFFER(const kd_u32, empty_leaves)           \
-  GEOMETRY(const kd_u32, leaf_triangles)       \
-  GEOMETRY(const float, leaf_vertices)         \
-  VALUE(float4, bounds_min)                    \
-  VALUE(float4, bounds_max)                    \
-  BUFFER(const RayRecord, rays)                \
-  VALUE(uint, ray_count)                       \
+#define KD_TRACE_ARGS(GEOMETRY, BUFFER, VALUE)   \
+  GEOMETRY(const KdNode, nodes)                  \
+  BUFFER(const kd_u32, empty_leaves)             \
+  GEOMETRY(const KdLeafTriangle, leaf_triangles) \
+  VALUE(float4, bounds_min)                      \
+  VALUE(float4, bounds_max)                      \
+  BUFFER(const RayRecord, rays)                  \
+  VALUE(uint, ray_count)                         \
   BUFFER(HitRecord, hits)
 
 #endif /* KD_TRACE_ARGS_H */

@@ -8,7 +8,8 @@
 /* One k-d tree node, 8 bytes (formats/kdtree.md).
  *   inner: payload = bits of the split position (float32); header = far_child << 2 | axis (0,1,2).
  *          The near ("below") child is the next node in the array.
- *   leaf:  payload = first index into the leaf-triangle array; header = count << 2 | 3. */
+ *   leaf:  payload = its first entry of the leaf-triangle array (KdLeafTriangle);
+ *          header = count << 2 | 3. */
 typedef struct KdNode {
   kd_u32 payload;
   kd_u32 header;
@@ -29,6 +30,17 @@ KD_INLINE float kd_node_split(KdNode node) { return kd_as_float(node.payload); }
 KD_INLINE kd_u32 kd_node_far_child(KdNode node) { return node.header >> 2; }
 KD_INLINE kd_u32 kd_leaf_first(KdNode node) { return node.payload; }
 KD_INLINE kd_u32 kd_leaf_count(KdNode node) { return node.header >> 2; }
+
+/* One entry of a leaf's triangle list (formats/kdtree.md): the corners a, b, c of the triangle
+ * (x, y, z each), copied from the scene's positions, then its index in the scene. A leaf is a
+ * range of these, so the triangles it holds are one contiguous read, and a triangle in several
+ * leaves is copied into each. 40 bytes. */
+typedef struct KdLeafTriangle {
+  float corners[9];
+  kd_u32 triangle;
+} KdLeafTriangle;
+KD_STATIC_ASSERT(sizeof(KdLeafTriangle) == 40 && KD_OFFSETOF(KdLeafTriangle, triangle) == 36,
+                 "KdLeafTriangle: 40 bytes on disk and on the device, corners then index");
 
 /* One record of a ray file (formats/rays.md): little-endian float32, 32 bytes. */
 typedef struct RayRecord {

@@ -10,8 +10,7 @@
 
 #define PT_SCENE_BUFFERS(GEOMETRY, SHADING) \
   GEOMETRY(KdNode, nodes)                   \
-  GEOMETRY(kd_u32, leaf_triangles)          \
-  GEOMETRY(float, leaf_vertices)            \
+  GEOMETRY(KdLeafTriangle, leaf_triangles)  \
   SHADING(float, triangle_vertices)         \
   SHADING(kd_u32, indices)                  \
   SHADING(kd_u32, material_ids)             \

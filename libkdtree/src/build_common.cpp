@@ -217,7 +217,7 @@ RootWork prepare_root(const Scene& scene) {
 KdTree finish_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel, Subtree&& built) {
   KdTree tree;
   tree.nodes = std::move(built.nodes);
-  tree.leaf_triangles = std::move(built.leaf_triangles);
+  tree.leaf_triangles = leaf_triangles_of(scene, built.leaf_triangles.data(), built.leaf_triangles.size());
   tree.bounds = Bounds{{voxel.min[0], voxel.min[1], voxel.min[2]}, {voxel.max[0], voxel.max[1], voxel.max[2]}};
   tree.settings = settings;
   tree.geometry_hash = compute_geometry_hash(scene);

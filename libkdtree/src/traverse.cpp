@@ -16,13 +16,11 @@
 namespace kdray {
 namespace {
 
-detail::TraversalArrays arrays_of(const KdTree& tree, const KdNode* nodes, const uint32_t* leaf_triangles,
-                                  const float* leaf_vertices, const uint32_t* empty_leaves) {
+detail::TraversalArrays arrays_of(const KdTree& tree, const uint32_t* empty_leaves) {
   detail::TraversalArrays arrays{};
-  arrays.nodes = nodes;
+  arrays.nodes = tree.nodes.data();
   arrays.empty_leaves = empty_leaves;
-  arrays.leaf_triangles = leaf_triangles;
-  arrays.leaf_vertices = leaf_vertices;
+  arrays.leaf_triangles = tree.leaf_triangles.data();
   const float* lo = &tree.bounds.min.x;
   const float* hi = &tree.bounds.max.x;
   for (int k = 0; k < 3; ++k) {
@@ -80,44 +78,27 @@ std::vector<uint32_t> empty_leaf_bits(const KdTree& tree) {
   return bits;
 }
 
-namespace {
-
-// Copies the corners of triangle triangle_of(i) to entry i of `vertices`, for entries [0, count).
-template <typename TriangleOf>
-TraversalArray<float> gather_corners(const Scene& scene, size_t count, const TriangleOf& triangle_of) {
-  TraversalArray<float> vertices(count * KD_TRIANGLE_FLOATS);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 16384), [&](const tbb::blocked_range<size_t>& entries) {
-    for (size_t entry = entries.begin(); entry < entries.end(); ++entry) {
-      float* corners = vertices.data() + entry * KD_TRIANGLE_FLOATS;
-      const size_t triangle = triangle_of(entry);
-      for (size_t corner = 0; corner < 3; ++corner) {
-        const Vec3& p = scene.positions[scene.indices[3 * triangle + corner]];
-        corners[3 * corner + 0] = p.x;
-        corners[3 * corner + 1] = p.y;
-        corners[3 * corner + 2] = p.z;
-      }
-    }
-  });
+TraversalArray<float> gather_triangle_vertices(const Scene& scene) {
+  TraversalArray<float> vertices(scene.triangle_count() * KD_TRIANGLE_FLOATS);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, scene.triangle_count(), 16384),
+                    [&](const tbb::blocked_range<size_t>& triangles) {
+                      for (size_t triangle = triangles.begin(); triangle < triangles.end(); ++triangle) {
+                        float* corners = vertices.data() + triangle * KD_TRIANGLE_FLOATS;
+                        for (size_t corner = 0; corner < 3; ++corner) {
+                          const Vec3& p = scene.positions[scene.indices[3 * triangle + corner]];
+                          corners[3 * corner + 0] = p.x;
+                          corners[3 * corner + 1] = p.y;
+                          corners[3 * corner + 2] = p.z;
+                        }
+                      }
+                    });
   return vertices;
 }
 
-}  // namespace
-
-TraversalArray<float> gather_triangle_vertices(const Scene& scene) {
-  return gather_corners(scene, scene.triangle_count(), [](size_t entry) { return entry; });
-}
-
-TraversalArray<float> gather_leaf_vertices(const Scene& scene, const KdTree& tree) {
-  const uint32_t* leaf_triangles = tree.leaf_triangles.data();
-  return gather_corners(scene, tree.leaf_triangles.size(), [=](size_t entry) { return leaf_triangles[entry]; });
-}
-
-PreparedTraversal::PreparedTraversal(const Scene& scene, const KdTree& tree)
-    : tree_(tree), leaf_vertices_(gather_leaf_vertices(scene, tree)), empty_leaves_(empty_leaf_bits(tree)) {}
+PreparedTraversal::PreparedTraversal(const KdTree& tree) : tree_(tree), empty_leaves_(empty_leaf_bits(tree)) {}
 
 detail::TraversalArrays PreparedTraversal::arrays() const {
-  return arrays_of(tree_, tree_.nodes.data(), tree_.leaf_triangles.data(), leaf_vertices_.data(),
-                   empty_leaves_.data());
+  return arrays_of(tree_, empty_leaves_.data());
 }
 
 void PreparedTraversal::closest(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
@@ -153,23 +134,20 @@ void PreparedTraversal::any(const std::vector<RayRecord>& rays, std::vector<uint
   trace_in_chunks(arrays(), rays, occluded, options.threads, variant_of(options.stack, options.path).any);
 }
 
-void trace_closest(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
-                   std::vector<HitRecord>& hits, const TraceOptions& options) {
-  PreparedTraversal(scene, tree).closest(rays, hits, options);
+void trace_closest(const KdTree& tree, const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
+                   const TraceOptions& options) {
+  PreparedTraversal(tree).closest(rays, hits, options);
 }
 
-void trace_any(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
-               std::vector<uint8_t>& occluded, const TraceOptions& options) {
-  PreparedTraversal(scene, tree).any(rays, occluded, options);
+void trace_any(const KdTree& tree, const std::vector<RayRecord>& rays, std::vector<uint8_t>& occluded,
+               const TraceOptions& options) {
+  PreparedTraversal(tree).any(rays, occluded, options);
 }
 
-HitRecord intersect_closest(const Scene& scene, const KdTree& tree, const RayRecord& ray, TraversalStack stack) {
-  const TraversalArray<float> leaf_vertices = gather_leaf_vertices(scene, tree);
+HitRecord intersect_closest(const KdTree& tree, const RayRecord& ray, TraversalStack stack) {
   const std::vector<uint32_t> empty_leaves = empty_leaf_bits(tree);
   HitRecord hit;
-  variant_of(stack).closest(
-      arrays_of(tree, tree.nodes.data(), tree.leaf_triangles.data(), leaf_vertices.data(), empty_leaves.data()),
-      &ray, &hit, 1);
+  variant_of(stack).closest(arrays_of(tree, empty_leaves.data()), &ray, &hit, 1);
   return hit;
 }
 

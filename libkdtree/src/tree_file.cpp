@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -159,7 +160,7 @@ void validate_structure(const KdTree& tree, const std::string& path) {
   const uint32_t largest = tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, tree.leaf_triangles.size(), size_t{1} << 16), uint32_t{0},
       [&](const tbb::blocked_range<size_t>& range, uint32_t value) {
-        for (size_t i = range.begin(); i < range.end(); ++i) value = std::max(value, tree.leaf_triangles[i]);
+        for (size_t i = range.begin(); i < range.end(); ++i) value = std::max(value, tree.leaf_triangles[i].triangle);
         return value;
       },
       [](uint32_t a, uint32_t b) { return std::max(a, b); });
@@ -194,11 +195,11 @@ void write_tree(const std::string& path, const KdTree& tree) {
   const uint64_t key = key_of(tree.geometry_hash, parameters);
   const std::vector<SectionData> sections = {
       {format::kTreeNodes, tree.nodes.data(), tree.nodes.size() * sizeof(KdNode)},
-      {format::kTreeLeafTriangles, tree.leaf_triangles.data(), tree.leaf_triangles.size() * sizeof(uint32_t)},
       {format::kTreeParameters, parameters.data(), parameters.size()},
       {format::kTreeStatistics, statistics.data(), statistics.size()},
       {format::kTreeBounds, bounds, sizeof bounds},
       {format::kTreeKey, &key, sizeof key},
+      {format::kTreeLeafTriangles, tree.leaf_triangles.data(), tree.leaf_triangles.size() * sizeof(KdLeafTriangle)},
   };
   write_container(path, ContainerHeaderInfo{format::kTreeMagic, format::kTreeVersion, 0, tree.geometry_hash},
                   sections);
@@ -208,57 +209,61 @@ uint64_t tree_key(uint64_t geometry_hash, const BuildSettings& settings) {
   return key_of(geometry_hash, encode_settings(settings));
 }
 
-KdTree read_tree(const std::string& path) {
+namespace {
+
+// The tree of a mapped version 3 file, its arrays viewing the mapping, checked throughout.
+KdTree tree_of(const MappedContainer& file, const std::string& path) {
+  const uint32_t version = file.contents.header.version;
+  if (version < 3)
+    throw Error(path, "a version " + std::to_string(version) +
+                          " tree, which this build no longer reads (version 3 stores its triangles' corners): "
+                          "rebuild it with kdbuild");
   KdTree tree;
   std::string parameters, statistics;
   float bounds[6] = {};
   uint64_t key = 0;
   uint32_t seen = 0;
-  auto element_count = [&](uint64_t size, uint64_t element, const char* what) {
-    if (size % element != 0) throw Error(path, std::string("damaged ") + what + " section: odd size");
-    return size / element;
-  };
-  const ContainerContents contents =
-      read_container(path, format::kTreeMagic, format::kTreeVersion, "kdtree", [&](uint32_t id, uint64_t size) -> void* {
-        if (id >= format::kTreeNodes && id <= format::kTreeKey) {
-          if (seen & (1u << id)) throw Error(path, "damaged file: section " + std::to_string(id) + " twice");
-          seen |= 1u << id;
-        }
-        switch (id) {
-          case format::kTreeNodes:
-            tree.nodes.resize(element_count(size, sizeof(KdNode), "node"));
-            return tree.nodes.data();
-          case format::kTreeLeafTriangles:
-            tree.leaf_triangles.resize(element_count(size, sizeof(uint32_t), "leaf-triangle"));
-            return tree.leaf_triangles.data();
-          case format::kTreeParameters:
-            parameters.resize(size);
-            return parameters.data();
-          case format::kTreeStatistics:
-            statistics.resize(size);
-            return statistics.data();
-          case format::kTreeBounds:
-            if (size != sizeof bounds) throw Error(path, "damaged bounds section");
-            return bounds;
-          case format::kTreeKey:
-            if (size != sizeof key) throw Error(path, "damaged key section");
-            return &key;
-          default:
-            return nullptr;
-        }
-      });
-  const uint32_t version = contents.header.version;
-  // Sections 1-5, and the key from version 2 on.
-  const uint32_t required = version >= 2 ? 0x7eu : 0x3eu;
-  if ((seen & required) != required) throw Error(path, "damaged file: a required section is missing");
-  if (version >= 2) {
-    if (key != key_of(contents.header.content_hash, parameters))
-      throw Error(path, "damaged tree: its key " + hash_hex(key) + " does not match its geometry and build settings");
-    tree.geometry_hash = contents.header.content_hash;
-    tree.key = key;
-  } else {
-    tree.v1_scene_hash = contents.header.content_hash;
+  for (const format::SectionEntry& section : file.contents.sections) {
+    const uint32_t id = section.id;
+    const char* bytes = file.bytes + section.offset;
+    const uint64_t size = section.size;
+    if (id < 32) {
+      if (seen & (1u << id)) throw Error(path, "damaged file: section " + std::to_string(id) + " twice");
+      seen |= 1u << id;
+    }
+    auto elements = [&](uint64_t element, const char* what) {
+      if (size % element != 0) throw Error(path, std::string("damaged ") + what + " section: odd size");
+      return size / element;
+    };
+    switch (id) {
+      case format::kTreeNodes:
+        tree.nodes = {file.mapping, reinterpret_cast<const KdNode*>(bytes), elements(sizeof(KdNode), "node")};
+        break;
+      case format::kTreeLeafTriangles:
+        tree.leaf_triangles = {file.mapping, reinterpret_cast<const KdLeafTriangle*>(bytes),
+                               elements(sizeof(KdLeafTriangle), "leaf-triangle")};
+        break;
+      case format::kTreeParameters: parameters.assign(bytes, size); break;
+      case format::kTreeStatistics: statistics.assign(bytes, size); break;
+      case format::kTreeBounds:
+        if (size != sizeof bounds) throw Error(path, "damaged bounds section");
+        std::memcpy(bounds, bytes, sizeof bounds);
+        break;
+      case format::kTreeKey:
+        if (size != sizeof key) throw Error(path, "damaged key section");
+        std::memcpy(&key, bytes, sizeof key);
+        break;
+      default: break;  // a section a newer writer added: not ours to read
+    }
   }
+  constexpr uint32_t kRequired = 1u << format::kTreeNodes | 1u << format::kTreeParameters |
+                                 1u << format::kTreeStatistics | 1u << format::kTreeBounds |
+                                 1u << format::kTreeKey | 1u << format::kTreeLeafTriangles;
+  if ((seen & kRequired) != kRequired) throw Error(path, "damaged file: a required section is missing");
+  if (key != key_of(file.contents.header.content_hash, parameters))
+    throw Error(path, "damaged tree: its key " + hash_hex(key) + " does not match its geometry and build settings");
+  tree.geometry_hash = file.contents.header.content_hash;
+  tree.key = key;
   tree.settings = decode_settings(parameters, path);
   tree.stats = from_portable_binary<TreeStats>(statistics, path, "statistics");
   tree.bounds = Bounds{{bounds[0], bounds[1], bounds[2]}, {bounds[3], bounds[4], bounds[5]}};
@@ -266,12 +271,20 @@ KdTree read_tree(const std::string& path) {
   return tree;
 }
 
+}  // namespace
+
+KdTree read_tree(const std::string& path) {
+  // The file is mapped and the tree's two arrays view it; the structure is checked while the
+  // checksum is computed, and used only once both pass.
+  KdTree tree;
+  map_container(path, format::kTreeMagic, format::kTreeVersion, "kdtree",
+                [&](const MappedContainer& file) { tree = tree_of(file, path); });
+  return tree;
+}
+
 void check_tree_matches_scene(const KdTree& tree, const std::string& tree_path, const Scene& scene,
                               const std::string& scene_path) {
-  if (tree.v1_scene_hash != 0 && tree.v1_scene_hash != scene.content_hash)
-    throw Error(tree_path, "stale tree: built for scene " + hash_hex(tree.v1_scene_hash) + ", but " + scene_path +
-                               " has " + hash_hex(scene.content_hash) + ": rebuild with kdbuild");
-  if (tree.v1_scene_hash == 0 && tree.geometry_hash != scene.geometry_hash)
+  if (tree.geometry_hash != scene.geometry_hash)
     throw Error(tree_path, "stale tree: built for geometry " + hash_hex(tree.geometry_hash) + ", but " + scene_path +
                                " has geometry " + hash_hex(scene.geometry_hash) + ": rebuild with kdbuild");
   if (tree.stats.triangles != scene.triangle_count())

@@ -9,7 +9,6 @@ namespace kdray {
 
 struct DeviceGeometry {
   cl::Buffer nodes, leaf_triangles;
-  cl::Buffer leaf_vertices;  // gather_leaf_vertices: what traversal reads
 };
 
 struct DeviceScene {

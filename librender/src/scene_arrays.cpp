@@ -98,10 +98,8 @@ void add_emitters(SceneArrays& arrays, const Scene& scene) {
 
 GeometryArrays geometry_arrays(const Scene& scene, const KdTree& tree) {
   GeometryArrays geometry;
-  geometry.gathered_leaf_vertices = gather_leaf_vertices(scene, tree);
   geometry.nodes = host_array(tree.nodes);
   geometry.leaf_triangles = host_array(tree.leaf_triangles);
-  geometry.leaf_vertices = host_array(geometry.gathered_leaf_vertices);
   const Vec3& lo = tree.bounds.min;
   const Vec3& hi = tree.bounds.max;
   float min[3] = {lo.x, lo.y, lo.z}, max[3] = {hi.x, hi.y, hi.z};

@@ -27,6 +27,10 @@ template <typename T, typename Allocator>
 HostArray host_array(const std::vector<T, Allocator>& values) {
   return {values.data(), values.size() * sizeof(T)};
 }
+template <typename T>
+HostArray host_array(const TreeArray<T>& values) {
+  return {values.data(), values.size() * sizeof(T)};
+}
 
 // The traversal's arrays (what the trace kernel reads too).
 struct GeometryArrays {
@@ -34,13 +38,6 @@ struct GeometryArrays {
 #define KD_ARRAY_SKIP(type, name)
   PT_SCENE_BUFFERS(KD_ARRAY_MEMBER, KD_ARRAY_SKIP)
   float bounds_min[3] = {0, 0, 0}, bounds_max[3] = {0, 0, 0};
-  TraversalArray<float> gathered_leaf_vertices;  // what leaf_vertices views
-
-  GeometryArrays() = default;
-  GeometryArrays(GeometryArrays&&) = default;  // a move keeps the views valid, a copy would not
-  GeometryArrays& operator=(GeometryArrays&&) = default;
-  GeometryArrays(const GeometryArrays&) = delete;
-  GeometryArrays& operator=(const GeometryArrays&) = delete;
 };
 
 // Every array of a render. Views point into the scene, the tree and the storage below, so the

@@ -21,26 +21,25 @@
 namespace kdray {
 namespace {
 
-bool same_tree(const KdTree& a, const KdTree& b) {
-  return a.nodes.size() == b.nodes.size() && a.leaf_triangles == b.leaf_triangles &&
-         std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(KdNode)) == 0;
-}
+bool same_tree(const KdTree& a, const KdTree& b) { return test::same_tree_bytes(a, b); }
 
-// FNV-1a 64 over the node and leaf-triangle arrays: what the tree's bytes are, in one number.
+// FNV-1a 64 over the nodes and the leaves' triangle indices: the tree's shape in one number (the
+// corners stored with each index are the scene's).
 uint64_t tree_fingerprint(const KdTree& tree) {
   uint64_t hash = 0xcbf29ce484222325ull;
   auto feed = [&](const void* data, size_t size) {
     for (size_t i = 0; i < size; ++i) hash = (hash ^ static_cast<const unsigned char*>(data)[i]) * 0x100000001b3ull;
   };
   feed(tree.nodes.data(), tree.nodes.size() * sizeof(KdNode));
-  feed(tree.leaf_triangles.data(), tree.leaf_triangles.size() * sizeof(uint32_t));
+  const std::vector<uint32_t> indices = test::leaf_triangle_indices(tree);
+  feed(indices.data(), indices.size() * sizeof(uint32_t));
   return hash;
 }
 
 // Every triangle with finite corners is in some leaf.
 void expect_all_triangles_referenced(const Scene& scene, const KdTree& tree) {
   std::vector<bool> seen(scene.triangle_count(), false);
-  for (uint32_t triangle : tree.leaf_triangles) seen.at(triangle) = true;
+  for (uint32_t triangle : test::leaf_triangle_indices(tree)) seen.at(triangle) = true;
   for (size_t t = 0; t < seen.size(); ++t) EXPECT_TRUE(seen[t]) << "triangle " << t << " is in no leaf";
 }
 
@@ -55,7 +54,7 @@ TEST(KdBuild, EmptySceneIsOneEmptyLeaf) {
 TEST(KdBuild, SingleTriangleIsOneLeaf) {
   const KdTree tree = build_kdtree(test::from_triangles({0, 0, 0, 1, 0, 0, 0, 1, 0}), BuildSettings{});
   ASSERT_EQ(tree.nodes.size(), 1u);
-  EXPECT_EQ(tree.leaf_triangles, TraversalArray<uint32_t>{0});
+  EXPECT_EQ(test::leaf_triangle_indices(tree), std::vector<uint32_t>{0});
   EXPECT_EQ(tree.bounds.max.x, 1.0f);
   EXPECT_EQ(tree.bounds.min.z, 0.0f);
   EXPECT_EQ(tree.bounds.max.z, 0.0f);
@@ -86,7 +85,7 @@ TEST(KdBuild, TrianglesWithNonFiniteCornersAreLeftOut) {
   const Scene scene = test::from_triangles({0, 0, 0, 1, 0, 0, 0, 1, 0, nan, 0, 0, 1, 1, 1, 0, 1, 1,
                                             0, 0, 1, INFINITY, 0, 1, 0, 1, 1});
   const KdTree tree = build_kdtree(scene, BuildSettings{});
-  EXPECT_EQ(tree.leaf_triangles, TraversalArray<uint32_t>{0});
+  EXPECT_EQ(test::leaf_triangle_indices(tree), std::vector<uint32_t>{0});
   EXPECT_EQ(tree.bounds.max.z, 0.0f) << "the bounds ignore the dropped triangles";
   EXPECT_EQ(tree.stats.triangles, 3u);
 }
@@ -288,10 +287,11 @@ TEST(KdBuild, BinnedTreeIsValidAndCloseToTheExactOne) {
       EXPECT_EQ(stats.leaves, stats.inner_nodes + 1);
       EXPECT_LE(stats.max_depth, settings.resolved(scene.triangle_count()).max_depth);
       expect_all_triangles_referenced(scene, binned);
+      const std::vector<uint32_t> indices = test::leaf_triangle_indices(binned);
       for (const KdNode& node : binned.nodes) {
         if (!kd_node_is_leaf(node)) continue;
-        EXPECT_TRUE(std::is_sorted(binned.leaf_triangles.begin() + kd_leaf_first(node),
-                                   binned.leaf_triangles.begin() + kd_leaf_first(node) + kd_leaf_count(node)));
+        EXPECT_TRUE(std::is_sorted(indices.begin() + kd_leaf_first(node),
+                                   indices.begin() + kd_leaf_first(node) + kd_leaf_count(node)));
       }
       // Binning costs little at the top of a tree; 4 bins above 20 triangles may cost more.
       EXPECT_LT(stats.sah_cost, (settings.bins == 4 ? 1.25 : 1.03) * exact.stats.sah_cost)

@@ -113,7 +113,7 @@ TEST_F(KdCli, KdtraceWritesTheClosestHits) {
   EXPECT_EQ(report.at("rays").get<size_t>(), rays.size());
   EXPECT_GT(report.at("mrays_per_s").get<double>(), 0.0);
   std::vector<HitRecord> expected;
-  trace_closest(scene_, tree, rays, expected);
+  trace_closest(tree, rays, expected);
   const std::vector<HitRecord> hits = read_hits(path("hits.bin"));
   ASSERT_EQ(hits.size(), rays.size());
   for (size_t i = 0; i < hits.size(); ++i) ASSERT_EQ(hits[i].triangle, expected[i].triangle) << i;

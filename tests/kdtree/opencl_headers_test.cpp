@@ -30,11 +30,10 @@ __kernel void report_features(__global int* out) {
   out[1] = KD_SHORT_STACK_SIZE;
 }
 
-__kernel void trace_closest(__global const KdNode* nodes, __global const kd_u32* leaf_triangles,
-                            __global const float* leaf_vertices, __global const float* bounds, __global const RayRecord* rays,
-                            __global HitRecord* hits) {
-  const KdSceneView scene = kd_scene_view(nodes, 0, leaf_triangles, leaf_vertices, bounds[0], bounds[1], bounds[2],
-                                          bounds[3], bounds[4], bounds[5]);
+__kernel void trace_closest(__global const KdNode* nodes, __global const KdLeafTriangle* leaf_triangles,
+                            __global const float* bounds, __global const RayRecord* rays, __global HitRecord* hits) {
+  const KdSceneView scene = kd_scene_view(nodes, 0, leaf_triangles, bounds[0], bounds[1], bounds[2], bounds[3],
+                                          bounds[4], bounds[5]);
   size_t i = get_global_id(0);
   hits[i] = kd_intersect_closest(&scene, rays[i]);
 }
@@ -193,17 +192,15 @@ TEST(KdOpenCl, KernelTraversalMatchesCpuWithDepthOneStack) {
   const KdTree tree = build_kdtree(scene, BuildSettings{});
   std::vector<RayRecord> rays = random_rays(scene_bounds(scene), 4096, 7);
   std::vector<HitRecord> cpu;
-  trace_closest(scene, tree, rays, cpu, {1, TraversalStack::Depth1});
+  trace_closest(tree, rays, cpu, {1, TraversalStack::Depth1});
 
   const float bounds[6] = {tree.bounds.min.x, tree.bounds.min.y, tree.bounds.min.z,
                            tree.bounds.max.x, tree.bounds.max.y, tree.bounds.max.z};
-  const TraversalArray<float> leaf_vertices = gather_leaf_vertices(scene, tree);
   std::vector<HitRecord> gpu(rays.size());
   cl_mem hits = device.buffer(gpu.data(), gpu.size() * sizeof(HitRecord));
   device.run("trace_closest",
              {device.buffer(tree.nodes.data(), tree.nodes.size() * sizeof(KdNode)),
-              device.buffer(tree.leaf_triangles.data(), tree.leaf_triangles.size() * 4),
-              device.buffer(leaf_vertices.data(), leaf_vertices.size() * sizeof(float)),
+              device.buffer(tree.leaf_triangles.data(), tree.leaf_triangles.size() * sizeof(KdLeafTriangle)),
               device.buffer(bounds, sizeof bounds),
               device.buffer(rays.data(), rays.size() * sizeof(RayRecord)), hits},
              rays.size(), hits, gpu.data(), gpu.size() * sizeof(HitRecord));

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <utility>
 
@@ -125,6 +126,19 @@ DoubleHit brute_force_double(const Scene& scene, const RayRecord& ray) {
     if (candidate.hit && (!best.hit || candidate.t < best.t)) best = candidate;
   }
   return best;
+}
+
+std::vector<uint32_t> leaf_triangle_indices(const KdTree& tree) {
+  std::vector<uint32_t> indices;
+  for (const KdLeafTriangle& entry : tree.leaf_triangles) indices.push_back(entry.triangle);
+  return indices;
+}
+
+bool same_tree_bytes(const KdTree& a, const KdTree& b) {
+  return a.nodes.size() == b.nodes.size() && a.leaf_triangles.size() == b.leaf_triangles.size() &&
+         std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(KdNode)) == 0 &&
+         std::memcmp(a.leaf_triangles.data(), b.leaf_triangles.data(),
+                     a.leaf_triangles.size() * sizeof(KdLeafTriangle)) == 0;
 }
 
 }  // namespace kdray::test

@@ -1,6 +1,7 @@
 // Small scenes built in memory for the k-d tree tests, and brute-force intersection.
 #pragma once
 
+#include <kdray/kdtree.h>
 #include <kdray/scene.h>
 
 #include <kernels/kd_types.h>
@@ -28,6 +29,11 @@ Scene mesh_file(const std::string& path);  // through import_scene
 HitRecord brute_force_float(const Scene& scene, const RayRecord& ray, bool skip_origin_hits = false);
 // True when the hit's triangle contains the ray origin (its exact t is ~0).
 bool is_origin_hit(const Scene& scene, const RayRecord& ray, const HitRecord& hit);
+
+// The scene triangle of each leaf-triangle entry of the tree, in order.
+std::vector<uint32_t> leaf_triangle_indices(const KdTree& tree);
+// Whether two trees have the same node and leaf-triangle bytes.
+bool same_tree_bytes(const KdTree& a, const KdTree& b);
 
 // The closest double-precision hit over all triangles (double_hit.h), ignoring hits at t ~ 0
 // (the triangle the ray starts on).

@@ -31,7 +31,7 @@ bool same_hit_or_tie(const HitRecord& found, const HitRecord& expected) {
 void expect_same_as_float_brute_force(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
                                       TraversalStack stack) {
   std::vector<HitRecord> hits;
-  trace_closest(scene, tree, rays, hits, {0, stack});
+  trace_closest(tree, rays, hits, {0, stack});
   size_t failures = 0;
   for (size_t i = 0; i < rays.size() && failures < 10; ++i) {
     const HitRecord expected = test::brute_force_float(scene, rays[i]);
@@ -54,7 +54,7 @@ void expect_same_as_float_brute_force(const Scene& scene, const KdTree& tree, co
 size_t expect_close_to_double_brute_force(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays) {
   constexpr double kGraze = 1e-5, kRelativeT = 1e-5;
   std::vector<HitRecord> hits;
-  trace_closest(scene, tree, rays, hits);
+  trace_closest(tree, rays, hits);
   size_t grazing = 0, failures = 0;
   for (size_t i = 0; i < rays.size() && failures < 10; ++i) {
     const test::DoubleHit exact = test::brute_force_double(scene, rays[i]);
@@ -129,8 +129,8 @@ TEST(KdTraverse, BinnedTreesFindTheClosestHits) {
     const std::vector<RayRecord> rays = mixed_rays(scene, tree, 4000, 13);
     expect_same_as_float_brute_force(scene, tree, rays, TraversalStack::Short);
     std::vector<HitRecord> binned_hits, exact_hits;
-    trace_closest(scene, tree, rays, binned_hits);
-    trace_closest(scene, build_kdtree(scene, exact), rays, exact_hits);
+    trace_closest(tree, rays, binned_hits);
+    trace_closest(build_kdtree(scene, exact), rays, exact_hits);
     size_t differ = 0;
     for (size_t i = 0; i < rays.size(); ++i)
       differ += !same_hit_or_tie(binned_hits[i], exact_hits[i]) && !test::is_origin_hit(scene, rays[i], exact_hits[i]);
@@ -144,9 +144,9 @@ TEST(KdTraverse, DepthOneStackGivesTheSameHitsAsTheFullStack) {
   ASSERT_GT(tree.stats.max_depth, 10u) << "deep enough to force restarts";
   const std::vector<RayRecord> rays = mixed_rays(scene, tree, 40000, 13);
   std::vector<HitRecord> full, depth1, short_stack;
-  trace_closest(scene, tree, rays, full, {0, TraversalStack::Full});
-  trace_closest(scene, tree, rays, depth1, {0, TraversalStack::Depth1});
-  trace_closest(scene, tree, rays, short_stack, {0, TraversalStack::Short});
+  trace_closest(tree, rays, full, {0, TraversalStack::Full});
+  trace_closest(tree, rays, depth1, {0, TraversalStack::Depth1});
+  trace_closest(tree, rays, short_stack, {0, TraversalStack::Short});
   EXPECT_EQ(0, std::memcmp(full.data(), depth1.data(), full.size() * sizeof(HitRecord)));
   EXPECT_EQ(0, std::memcmp(full.data(), short_stack.data(), full.size() * sizeof(HitRecord)));
 }
@@ -159,8 +159,8 @@ TEST(KdTraverse, AnyHitAgreesWithClosestHit) {
   std::vector<HitRecord> hits;
   std::vector<uint8_t> occluded;
   for (TraversalStack stack : {TraversalStack::Short, TraversalStack::Depth1}) {
-    trace_closest(scene, tree, rays, hits, {0, stack});
-    trace_any(scene, tree, rays, occluded, {0, stack});
+    trace_closest(tree, rays, hits, {0, stack});
+    trace_any(tree, rays, occluded, {0, stack});
     for (size_t i = 0; i < rays.size(); ++i)
       ASSERT_EQ(occluded[i] != 0, hits[i].triangle != KD_NO_HIT) << "ray " << i;
   }
@@ -170,13 +170,13 @@ TEST(KdTraverse, RayIntervalIsOpenAtBothEnds) {
   const Scene scene = test::from_triangles({-1, -1, 2, 1, -1, 2, 0, 1, 2});
   const KdTree tree = build_kdtree(scene, BuildSettings{});
   RayRecord ray{0, 0, 0, 0, 0, 1, 0, INFINITY};
-  EXPECT_FLOAT_EQ(intersect_closest(scene, tree, ray).t, 2.0f);
+  EXPECT_FLOAT_EQ(intersect_closest(tree, ray).t, 2.0f);
   ray.tmax = 2.0f;
-  EXPECT_EQ(intersect_closest(scene, tree, ray).triangle, KD_NO_HIT);
+  EXPECT_EQ(intersect_closest(tree, ray).triangle, KD_NO_HIT);
   ray.tmax = INFINITY;
   ray.tmin = 2.0f;
-  EXPECT_EQ(intersect_closest(scene, tree, ray).triangle, KD_NO_HIT);
-  const HitRecord miss = intersect_closest(scene, tree, RayRecord{0, 0, 0, 0, 0, -1, 0, INFINITY});
+  EXPECT_EQ(intersect_closest(tree, ray).triangle, KD_NO_HIT);
+  const HitRecord miss = intersect_closest(tree, RayRecord{0, 0, 0, 0, 0, -1, 0, INFINITY});
   EXPECT_TRUE(std::isinf(miss.t));
   EXPECT_EQ(miss.triangle, KD_NO_HIT);
 }
@@ -187,7 +187,7 @@ TEST(KdTraverse, NonFiniteRaysMiss) {
   const float nan = std::nanf("");
   for (const RayRecord& ray : {RayRecord{nan, 0.5f, 0, 1, 0, 0, 0, INFINITY}, RayRecord{0, 0.5f, 0, 0, 0, 0, 0, INFINITY},
                                RayRecord{0, 0.5f, 0, nan, 1, 0, 0, INFINITY}, RayRecord{0, 0.5f, 0, 1, 0, 0, 0, nan}})
-    EXPECT_EQ(intersect_closest(scene, tree, ray).triangle, KD_NO_HIT);
+    EXPECT_EQ(intersect_closest(tree, ray).triangle, KD_NO_HIT);
 }
 
 KdNode inner_node(uint32_t axis, float split, uint32_t far_child) {
@@ -208,7 +208,8 @@ TEST(KdTraverse, TiesInTGoToTheSmallerTriangleIndex) {
   KdTree one_leaf;
   one_leaf.bounds = Bounds{{-1, -1, -1}, {1, 1, 1}};
   one_leaf.nodes = {leaf_node(0, 2)};
-  one_leaf.leaf_triangles = {1, 0};
+  const uint32_t larger_first[] = {1, 0};
+  one_leaf.leaf_triangles = leaf_triangles_of(scene, larger_first, 2);
   // Split at x = 0: triangle 1 only below, triangle 0 only above. The ray meets the triangles
   // on the split plane, so both leaves touch the hit; the below one comes first.
   KdTree two_leaves = one_leaf;
@@ -216,7 +217,7 @@ TEST(KdTraverse, TiesInTGoToTheSmallerTriangleIndex) {
   const RayRecord ray{-1, 0, -1, 1, 0, 1, 0, INFINITY};
   for (const KdTree* tree : {&one_leaf, &two_leaves}) {
     for (TraversalStack stack : {TraversalStack::Short, TraversalStack::Depth1, TraversalStack::Full}) {
-      const HitRecord hit = intersect_closest(scene, *tree, ray, stack);
+      const HitRecord hit = intersect_closest(*tree, ray, stack);
       EXPECT_EQ(hit.triangle, 0u);
       EXPECT_EQ(hit.t, 1.0f);
     }
@@ -249,7 +250,7 @@ TEST(KdTraverse, DuplicatedTrianglesGiveTheSameHitsInEveryTree) {
     const std::vector<RayRecord> rays = random_rays(tree.bounds, 4000, 31);
     for (TraversalStack stack : {TraversalStack::Short, TraversalStack::Depth1}) {
       std::vector<HitRecord> hits;
-      trace_closest(scene, tree, rays, hits, {0, stack});
+      trace_closest(tree, rays, hits, {0, stack});
       if (reference.empty()) {
         reference = hits;
         size_t hit_count = 0;
@@ -272,12 +273,12 @@ void expect_no_escape(const Scene& scene, const Vec3& inside, size_t count) {
   const KdTree tree = build_kdtree(scene, BuildSettings{});
   const std::vector<RayRecord> rays = rays_toward_surface(scene, inside, count, 77);
   std::vector<uint8_t> occluded;
-  trace_any(scene, tree, rays, occluded);
+  trace_any(tree, rays, occluded);
   size_t escaped = 0;
   for (uint8_t hit : occluded) escaped += hit ? 0 : 1;
   EXPECT_EQ(escaped, 0u) << "of " << rays.size() << " rays from inside";
   std::vector<HitRecord> hits;
-  trace_closest(scene, tree, rays, hits, {0, TraversalStack::Depth1});
+  trace_closest(tree, rays, hits, {0, TraversalStack::Depth1});
   escaped = 0;
   for (const HitRecord& hit : hits) escaped += hit.triangle == KD_NO_HIT ? 1 : 0;
   EXPECT_EQ(escaped, 0u) << "closest hit, depth-1 stack";

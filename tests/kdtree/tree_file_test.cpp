@@ -56,7 +56,8 @@ TEST_F(KdTreeFile, RoundTripKeepsEverything) {
   EXPECT_EQ(back.key, tree_key(scene_.geometry_hash, settings));
   ASSERT_EQ(back.nodes.size(), tree.nodes.size());
   EXPECT_EQ(0, std::memcmp(back.nodes.data(), tree.nodes.data(), tree.nodes.size() * sizeof(KdNode)));
-  EXPECT_EQ(back.leaf_triangles, tree.leaf_triangles);
+  EXPECT_TRUE(test::same_tree_bytes(back, tree));
+  EXPECT_TRUE(back.nodes.mapped() && back.leaf_triangles.mapped()) << "a read tree views its file";
   EXPECT_EQ(back.settings.traversal_cost, 10.0f);
   EXPECT_EQ(back.settings.max_depth, 12u);
   EXPECT_FALSE(back.settings.perfect_splits);
@@ -79,8 +80,24 @@ TEST_F(KdTreeFile, BinningIsRecordedAndAnExactTreeKeepsItsKey) {
   EXPECT_EQ(binned_back.key, tree_key(scene_.geometry_hash, binned.resolved(scene_.triangle_count())));
   EXPECT_EQ(read_tree(path("exact.kdtree")).settings.binned_above, 0u);
   EXPECT_NE(tree_key(1, binned), tree_key(1, exact));
-  // The exact sweep's key is the one trees had before binning (five fields in section 3).
-  EXPECT_EQ(tree_key(0x0123456789abcdefull, exact), 0x4237eda0fa487d3cull);
+  // The exact sweep's section 3 holds the five fields trees had before binning, so its key
+  // changes with the format version only (version 2 gave 0x4237eda0fa487d3c).
+  EXPECT_EQ(tree_key(0x0123456789abcdefull, exact), 0xb7c5220bd88d19c5ull);
+}
+
+// A read tree views its file's pages: a writer replacing the file (by rename, as every writer
+// does) leaves the tree that was read as it was, and changing a read tree changes a copy.
+TEST_F(KdTreeFile, AReadTreeOutlivesItsFileBeingReplaced) {
+  write_tree(path("a.kdtree"), tree_);
+  KdTree back = read_tree(path("a.kdtree"));
+  const KdTree other = build_kdtree(test::icosphere_scene(3, {0, 0, 0}, 1), BuildSettings{});
+  write_tree(path("a.kdtree"), other);
+  EXPECT_TRUE(test::same_tree_bytes(back, tree_));
+  EXPECT_TRUE(test::same_tree_bytes(read_tree(path("a.kdtree")), other));
+  back.nodes.own()[0].payload ^= 1u;
+  EXPECT_FALSE(back.nodes.mapped());
+  EXPECT_TRUE(back.leaf_triangles.mapped());
+  EXPECT_TRUE(test::same_tree_bytes(read_tree(path("a.kdtree")), other));
 }
 
 TEST_F(KdTreeFile, SameTreeGivesTheSameBytes) {
@@ -120,26 +137,26 @@ TEST_F(KdTreeFile, InvalidStructureIsRejected) {
   };
   ASSERT_FALSE(kd_node_is_leaf(tree_.nodes[0]));
   KdTree tree = tree_;
-  tree.nodes[0].header = static_cast<uint32_t>(tree.nodes.size() + 5) << 2 | kd_node_axis(tree.nodes[0]);
+  tree.nodes.own()[0].header = static_cast<uint32_t>(tree.nodes.size() + 5) << 2 | kd_node_axis(tree.nodes[0]);
   expect_rejected(tree, "far child out of range", "far child");
   tree = tree_;
-  tree.nodes[0].header = 1u << 2 | kd_node_axis(tree.nodes[0]);
+  tree.nodes.own()[0].header = 1u << 2 | kd_node_axis(tree.nodes[0]);
   expect_rejected(tree, "far child = near child", "far child");
   tree = tree_;
-  for (KdNode& node : tree.nodes)
+  for (KdNode& node : tree.nodes.own())
     if (kd_node_is_leaf(node) && kd_leaf_count(node) > 0) {
       node.payload = static_cast<uint32_t>(tree.leaf_triangles.size());
       break;
     }
   expect_rejected(tree, "leaf range past the array", "leaf array");
   tree = tree_;
-  tree.leaf_triangles[0] = static_cast<uint32_t>(scene_.triangle_count());
+  tree.leaf_triangles.own()[0].triangle = static_cast<uint32_t>(scene_.triangle_count());
   expect_rejected(tree, "triangle index", "triangle index");
   tree = tree_;
-  tree.nodes.push_back(tree.nodes.back());
+  tree.nodes.own().push_back(tree.nodes[tree.nodes.size() - 1]);
   expect_rejected(tree, "extra node", "unreachable");
   tree = tree_;
-  tree.nodes.clear();
+  tree.nodes.own().clear();
   expect_rejected(tree, "no nodes", "no nodes");
 }
 
@@ -153,12 +170,12 @@ KdTree complete_tree(uint32_t levels) {
     void add(uint32_t depth, uint32_t levels) {
       const uint32_t index = static_cast<uint32_t>(tree.nodes.size());
       if (depth == levels) {
-        tree.nodes.push_back(KdNode{0, KD_LEAF_TAG});
+        tree.nodes.own().push_back(KdNode{0, KD_LEAF_TAG});
         return;
       }
-      tree.nodes.push_back(KdNode{0, depth % 3});
+      tree.nodes.own().push_back(KdNode{0, depth % 3});
       add(depth + 1, levels);
-      tree.nodes[index].header = static_cast<uint32_t>(tree.nodes.size()) << 2 | depth % 3;
+      tree.nodes.own()[index].header = static_cast<uint32_t>(tree.nodes.size()) << 2 | depth % 3;
       add(depth + 1, levels);
     }
   } builder{tree};
@@ -175,13 +192,13 @@ TEST_F(KdTreeFile, LargeTreesAreCheckedThroughout) {
   for (const size_t damaged : {in_near_half, intact.nodes.size() - 3}) {
     KdTree tree = intact;
     ASSERT_FALSE(kd_node_is_leaf(tree.nodes[damaged])) << damaged;
-    tree.nodes[damaged].header = static_cast<uint32_t>(damaged + 1) << 2 | kd_node_axis(tree.nodes[damaged]);
+    tree.nodes.own()[damaged].header = static_cast<uint32_t>(damaged + 1) << 2 | kd_node_axis(tree.nodes[damaged]);
     write_tree(path("damaged.kdtree"), tree);
     EXPECT_NE(read_error(path("damaged.kdtree")).find("node " + std::to_string(damaged) + " has an invalid far child"),
               std::string::npos)
         << read_error(path("damaged.kdtree"));
     tree = intact;
-    tree.nodes[damaged] = KdNode{0, KD_LEAF_TAG};  // a leaf where an inner node was: its subtree is left over
+    tree.nodes.own()[damaged] = KdNode{0, KD_LEAF_TAG};  // a leaf where an inner node was: its subtree is left over
     write_tree(path("damaged.kdtree"), tree);
     EXPECT_NE(read_error(path("damaged.kdtree")), "") << "inner node " << damaged << " made a leaf";
   }
@@ -193,10 +210,10 @@ TEST_F(KdTreeFile, TreeDeeperThanTheFullStackIsRejected) {
   tree.stats.triangles = 0;
   for (uint32_t level = 0; level < 70; ++level) {
     const uint32_t index = static_cast<uint32_t>(tree.nodes.size());
-    tree.nodes.push_back(KdNode{0, (index + 2) << 2 | 0u});
-    tree.nodes.push_back(KdNode{0, KD_LEAF_TAG});
+    tree.nodes.own().push_back(KdNode{0, (index + 2) << 2 | 0u});
+    tree.nodes.own().push_back(KdNode{0, KD_LEAF_TAG});
   }
-  tree.nodes.push_back(KdNode{0, KD_LEAF_TAG});
+  tree.nodes.own().push_back(KdNode{0, KD_LEAF_TAG});
   write_tree(path("deep.kdtree"), tree);
   EXPECT_NE(read_error(path("deep.kdtree")).find("deeper"), std::string::npos) << read_error(path("deep.kdtree"));
 }

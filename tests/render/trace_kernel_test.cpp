@@ -59,7 +59,7 @@ TEST_F(TraceKernel, HitsEqualTheCpuTraversalOnTheFandisk) {
   rays.insert(rays.end(), hard.begin(), hard.end());
   ASSERT_GE(rays.size(), 100000u);
   std::vector<HitRecord> cpu;
-  trace_closest(*scene_, *tree_, rays, cpu);
+  trace_closest(*tree_, rays, cpu);
   std::vector<HitRecord> device = trace_rays_opencl(*scene_, *tree_, rays, DeviceSelection{});
   ASSERT_EQ(device.size(), rays.size());
   size_t hits = 0;
@@ -73,7 +73,7 @@ TEST_F(TraceKernel, ShortStackOfOneGivesTheSameHits) {
   std::vector<RayRecord> hard = hard_case_rays(*scene_, *tree_, 10000, 22);
   rays.insert(rays.end(), hard.begin(), hard.end());
   std::vector<HitRecord> cpu;
-  trace_closest(*scene_, *tree_, rays, cpu, TraceOptions{0, TraversalStack::Depth1});
+  trace_closest(*tree_, rays, cpu, TraceOptions{0, TraversalStack::Depth1});
   DeviceSelection depth_one;
   depth_one.short_stack_size = 1;
   EXPECT_EQ(count_differences(cpu, trace_rays_opencl(*scene_, *tree_, rays, depth_one)), 0u);

@@ -93,7 +93,7 @@ size_t count_disagreements(const Scene& scene, const std::vector<RayRecord>& ray
 std::vector<HitRecord> trace_checked(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
                                      const TraceOptions& options) {
   std::vector<HitRecord> hits;
-  trace_closest(scene, tree, rays, hits, options);
+  trace_closest(tree, rays, hits, options);
   std::vector<std::string> reports;
   EXPECT_EQ(count_disagreements(scene, rays, hits, &reports), 0u) << "of " << rays.size() << " rays";
   for (const std::string& report : reports) ADD_FAILURE() << report;

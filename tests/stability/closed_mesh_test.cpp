@@ -55,7 +55,7 @@ void expect_no_escapes(const Scene& scene, const Scene& surface, float inner) {
   const kdray::KdTree tree = kdray::build_kdtree(scene, kdray::BuildSettings{});
   const std::vector<RayRecord> rays = rays_at_vertices_and_edges(surface, inner);
   std::vector<HitRecord> hits;
-  kdray::trace_closest(scene, tree, rays, hits);
+  kdray::trace_closest(tree, rays, hits);
 
   size_t escapes = 0, off_target = 0;
   std::vector<std::string> examples;  // what brute force in double says about the first failures

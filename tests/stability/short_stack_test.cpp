@@ -33,9 +33,9 @@ TEST(ShortStack, OneEntryStackFindsTheHitsOfTheFullStack) {
   const std::vector<RayRecord> inside = kdray::rays_toward_surface(scene, {0, 30, 0}, 20000, 32);
   rays.insert(rays.end(), inside.begin(), inside.end());
   std::vector<HitRecord> full, one_entry, short_stack;
-  kdray::trace_closest(scene, tree, rays, full, {0, kdray::TraversalStack::Full});
-  kdray::trace_closest(scene, tree, rays, one_entry, {0, kdray::TraversalStack::Depth1});
-  kdray::trace_closest(scene, tree, rays, short_stack, {0, kdray::TraversalStack::Short});
+  kdray::trace_closest(tree, rays, full, {0, kdray::TraversalStack::Full});
+  kdray::trace_closest(tree, rays, one_entry, {0, kdray::TraversalStack::Depth1});
+  kdray::trace_closest(tree, rays, short_stack, {0, kdray::TraversalStack::Short});
 
   // Restarting may resolve a tie differently: a ray through a shared vertex can report either
   // triangle, a float ulp apart. Anything else counts as a difference: both answers must

@@ -126,7 +126,7 @@ TEST(SplitPlanes, AxisAlignedRaysWithSignedZerosAgreeWithBruteForce) {
 
   // The sign of a zero component must not change the answer at all.
   std::vector<HitRecord> hits;
-  kdray::trace_closest(hard_scene().scene, hard_scene().tree, rays, hits);
+  kdray::trace_closest(hard_scene().tree, rays, hits);
   size_t sign_dependent = 0;
   for (size_t i = 0; i < rays.size(); i += 4) {
     for (size_t k = 1; k < 4; ++k) {

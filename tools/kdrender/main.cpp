@@ -88,12 +88,11 @@ int merge(const Options& o, bool range_given) {
   return kExitOk;
 }
 
-// Peak memory of a render: the scene and the tree are held by the host and again by the
-// OpenCL device (host memory on PoCL), so are the leaf vertices (36 bytes for each 4-byte leaf
-// reference of the tree file), and each film channel keeps exact sums, means and the device's
-// accumulators. An estimate with a margin, not a measurement (RELIABILITY.md, Resource limits).
+// Peak memory of a render: the scene and the tree (its leaf triangles' corners included) are held
+// by the host and again by the OpenCL device (host memory on PoCL), and each film channel keeps
+// exact sums, means and the device's accumulators. An estimate with a margin, not a measurement
+// (RELIABILITY.md, Resource limits).
 constexpr uint64_t kRenderBytesPerInputByte = 3;
-constexpr uint64_t kRenderBytesPerTreeByte = kRenderBytesPerInputByte + 2 * 9;
 constexpr uint64_t kRenderBytesPerPixelChannel = 32;
 
 uint64_t estimated_render_bytes(const Options& o, const kdray::RenderSettings& s) {
@@ -105,7 +104,7 @@ uint64_t estimated_render_bytes(const Options& o, const kdray::RenderSettings& s
   // Before the scene is read, a side left to the camera's aspect ratio counts as the default size.
   const uint64_t pixels = uint64_t(s.width ? s.width : kdray::RenderSettings::kDefaultSize) *
                           (s.height ? s.height : kdray::RenderSettings::kDefaultSize);
-  return kRenderBytesPerInputByte * size_of(o.scene_path) + kRenderBytesPerTreeByte * size_of(o.tree_path) +
+  return kRenderBytesPerInputByte * (size_of(o.scene_path) + size_of(o.tree_path)) +
          kRenderBytesPerPixelChannel * pixels * kdray::film_channel_count(s);
 }
 

@@ -33,10 +33,10 @@ int main(int argc, char** argv) {
                               [](const std::string& line) { kdray::tool::print_warning("kdtrace", line); });
     const std::vector<RayRecord> rays = kdtrace::rays_to_trace(o, scene, tree);
     const kdray::TraceOptions options = kdtrace::traversal_options(o, host);
-    // The host traversal's set-up (the gathered triangle vertices), done once for a host run and
-    // for the counting pass of --json.
+    // The host traversal's set-up (the empty-leaf bits), done once for a host run and for the
+    // counting pass of --json.
     std::optional<kdray::PreparedTraversal> prepared;
-    if (host || o.flags.json) prepared.emplace(scene, tree);
+    if (host || o.flags.json) prepared.emplace(tree);
     const kdtrace::TraceRun run =
         kdtrace::trace_on(host ? &*prepared : nullptr, scene, tree, rays, options, kdtrace::opencl_selection(o));
     if (!o.hits_path.empty()) kdray::write_hits(o.hits_path, run.hits);

@@ -70,17 +70,19 @@ enum SceneFlags : uint64_t {
 
 // ---- .kdtree --------------------------------------------------------------------------
 constexpr char kTreeMagic[8] = {'K', 'D', 'T', 'R', 'E', 'E', '\0', '\0'};
-// Version 2 keys a tree by its scene's geometry hash and build settings (kTreeKey); version 1
-// files, which recorded the scene's content hash, are still read.
-constexpr uint32_t kTreeVersion = 2;
+// Version 3 stores each leaf triangle's corners with its index (kTreeLeafTriangles); version 2
+// keyed a tree by its scene's geometry hash and build settings (kTreeKey), version 1 by the
+// scene's content hash. Readers refuse versions 1 and 2 ("rebuild").
+constexpr uint32_t kTreeVersion = 3;
 
 enum TreeSection : uint32_t {
   kTreeNodes = 1,            // KdNode (kernels/kd_types.h), 8 bytes each, root first
-  kTreeLeafTriangles = 2,    // uint32 triangle indices, leaves are ranges of this array
+  kTreeLeafIndices = 2,      // versions 1 and 2 only: uint32 triangle indices, leaves were ranges of them
   kTreeParameters = 3,       // cereal portable binary: BuildSettings
   kTreeStatistics = 4,       // cereal portable binary: TreeStats
   kTreeBounds = 5,           // float32 min x,y,z, max x,y,z of the root voxel
-  kTreeKey = 6,              // uint64 tree key (version 2): geometry hash, settings, version
+  kTreeKey = 6,              // uint64 tree key (from version 2): geometry hash, settings, version
+  kTreeLeafTriangles = 7,    // KdLeafTriangle (kernels/kd_types.h), 40 bytes each; leaves are ranges of them
 };
 
 }  // namespace kdray::format

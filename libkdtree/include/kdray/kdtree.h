@@ -64,17 +64,15 @@ struct TreeStats {
 };
 
 struct KdTree {
-  TraversalArray<KdNode> nodes;             // root first; see kernels/kd_types.h
-  TraversalArray<uint32_t> leaf_triangles;  // leaves are ranges of this array
+  TreeArray<KdNode> nodes;                  // root first; see kernels/kd_types.h
+  TreeArray<KdLeafTriangle> leaf_triangles;  // leaves are ranges of this array
   Bounds bounds;                         // the root voxel
   BuildSettings settings;
   TreeStats stats;
   // What it was built from: the scene's geometry hash and, with the settings and the format
-  // version, the tree's key (tree_key; the name of its tree cache entry). A version 1 file
-  // recorded its scene's content hash instead (v1_scene_hash); geometry_hash and key are then 0.
+  // version, the tree's key (tree_key; the name of its tree cache entry).
   uint64_t geometry_hash = 0;
   uint64_t key = 0;
-  uint64_t v1_scene_hash = 0;
 };
 
 // The key of the tree of a scene with this geometry hash built with these settings: XXH3-64 over
@@ -106,6 +104,11 @@ struct BuildControl {
 // with non-finite vertices are left out. Throws kdray::Error for settings out of range.
 KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const BuildControl& control = {});
 
+// The leaf-triangle entries of `count` scene triangles, in the order given: each one's corners,
+// copied from the scene's positions, and its index (KdLeafTriangle). The triangles must be
+// the scene's.
+TraversalArray<KdLeafTriangle> leaf_triangles_of(const Scene& scene, const uint32_t* triangles, size_t count);
+
 // Statistics of a tree (used by the builders and by read_tree's consistency check).
 TreeStats compute_tree_stats(const KdTree& tree, uint64_t scene_triangles);
 
@@ -113,12 +116,13 @@ TreeStats compute_tree_stats(const KdTree& tree, uint64_t scene_triangles);
 void write_tree(const std::string& path, const KdTree& tree);
 
 // Reads and validates a .kdtree: checksum, then every node, child and leaf range, so that
-// traversal can trust it. Throws kdray::Error naming the file.
+// traversal can trust it. The tree's arrays view the mapped file (TreeArray). Throws
+// kdray::Error naming the file; trees of versions before 3 are refused ("rebuild").
 KdTree read_tree(const std::string& path);
 
 // Throws kdray::Error when the tree was built for other geometry ("stale tree: built for
-// geometry <hash>, but <scene path> has geometry <hash>: rebuild with kdbuild"; for a version 1
-// tree, another scene content) or is for another triangle count (its triangle indices were
+// geometry <hash>, but <scene path> has geometry <hash>: rebuild with kdbuild") or is for
+// another triangle count (its triangle indices were
 // checked against its own count when it was read or built).
 void check_tree_matches_scene(const KdTree& tree, const std::string& tree_path, const Scene& scene,
                               const std::string& scene_path);

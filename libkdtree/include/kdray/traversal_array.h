@@ -1,13 +1,15 @@
-// The arrays traversal reads at random (the tree's nodes and leaf references, the gathered
-// triangle vertices): vectors whose memory is aligned to and advised for transparent huge
-// pages once it spans one, because random rays touch the whole node array and with 4 KiB pages
-// nearly every node fetch also misses the TLB. A file is read, and a tree built, straight into
-// them, so nothing is copied again before tracing. resize() leaves new elements uninitialised:
-// they are plain data overwritten at once, and a zero fill would be one more pass over the
-// memory.
+// The arrays traversal reads at random (a built tree's nodes and leaf triangles, the shading
+// copy of the triangle vertices): vectors whose memory is aligned to and advised for
+// transparent huge pages once it spans one, because random rays touch the whole node array and
+// with 4 KiB pages nearly every node fetch also misses the TLB. A tree is built straight into
+// them, and a read tree views its mapped file instead (TreeArray, below). resize() leaves new
+// elements uninitialised: they are plain data overwritten at once, and a zero fill would be one
+// more pass over the memory.
 #pragma once
 
 #include <cstddef>
+#include <initializer_list>
+#include <memory>
 #include <new>
 #include <utility>
 #include <vector>
@@ -58,5 +60,43 @@ struct TraversalAllocator : detail::DefaultInitialisingConstruct {
 
 template <typename T>
 using TraversalArray = std::vector<T, TraversalAllocator<T>>;
+
+// An array of a tree: memory of its own (a TraversalArray, as a build makes it) or a range of a
+// mapped file (read_tree), which stays mapped while any array viewing it lives. A read tree is
+// traced where the file's pages are, with nothing copied; changing an array that views a file
+// first copies it into memory of its own (tests damage trees that way).
+template <typename T>
+class TreeArray {
+ public:
+  TreeArray() = default;
+  TreeArray(TraversalArray<T>&& owned) : owned_(std::move(owned)) {}
+  TreeArray(std::initializer_list<T> values) : owned_(values) {}
+  TreeArray(std::shared_ptr<const void> mapping, const T* data, size_t size)
+      : mapping_(std::move(mapping)), view_(data), view_size_(size) {}
+
+  const T* data() const { return mapping_ ? view_ : owned_.data(); }
+  size_t size() const { return mapping_ ? view_size_ : owned_.size(); }
+  bool empty() const { return size() == 0; }
+  const T& operator[](size_t i) const { return data()[i]; }
+  const T* begin() const { return data(); }
+  const T* end() const { return data() + size(); }
+  // Whether the array views a mapped file.
+  bool mapped() const { return mapping_ != nullptr; }
+
+  // The array as memory of its own, to change (copied out of the file first if it views one).
+  TraversalArray<T>& own() {
+    if (mapping_) {
+      owned_.assign(view_, view_ + view_size_);
+      mapping_.reset();
+    }
+    return owned_;
+  }
+
+ private:
+  std::shared_ptr<const void> mapping_;  // set while the array views a file
+  const T* view_ = nullptr;
+  size_t view_size_ = 0;
+  TraversalArray<T> owned_;
+};
 
 }  // namespace kdray

@@ -37,12 +37,6 @@ struct TraceOptions {
 // (36 bytes) per triangle in triangle order: what shading reads of a hit triangle.
 TraversalArray<float> gather_triangle_vertices(const Scene& scene);
 
-// The corners traversal reads (KdSceneView.leaf_vertices in kernels/kd_scene_view.h):
-// KD_TRIANGLE_FLOATS floats per entry of the tree's leaf-triangle array, entry i holding the
-// corners of triangle leaf_triangles[i], so that a leaf's triangles are one contiguous read.
-// PreparedTraversal gathers it once; device code uploads it next to the tree.
-TraversalArray<float> gather_leaf_vertices(const Scene& scene, const KdTree& tree);
-
 // One bit per node of the tree, set for empty leaves (bit n % 32 of word n / 32): derived at
 // load for traversals built with KD_EMPTY_LEAF_BITS (KdSceneView.empty_leaves), which skip
 // empty leaves without fetching them.
@@ -56,15 +50,15 @@ struct TraversalWork {
   uint64_t rays = 0, inner_steps = 0, leaves = 0, triangle_tests = 0, fast_path_rays = 0, fast_path_restarts = 0;
 };
 
-// A scene and its tree ready for batches of rays: the leaf vertices gathered once, so
-// repeated batches (and timings of them) do not pay for it again. Keeps references to both
-// and traces the tree's own arrays.
+// A tree ready for batches of rays: its empty-leaf bits derived once, so repeated batches (and
+// timings of them) do not pay for it again. Keeps a reference to the tree and traces its own
+// arrays (a tree holds its triangles' corners, so the scene is not needed).
 class PreparedTraversal {
  public:
-  PreparedTraversal(const Scene& scene, const KdTree& tree);
+  explicit PreparedTraversal(const KdTree& tree);
 
-  // Closest hit per ray (t = +inf, triangle = KD_NO_HIT on a miss). The tree must match the
-  // scene (check_tree_matches_scene). hits is resized to rays.size().
+  // Closest hit per ray (t = +inf, triangle = KD_NO_HIT on a miss): the index of a triangle of
+  // the scene the tree was built for. hits is resized to rays.size().
   void closest(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits, const TraceOptions& options = {}) const;
 
   // 1 per ray that hits anything with tmin < t < tmax, else 0.
@@ -80,19 +74,17 @@ class PreparedTraversal {
   detail::TraversalArrays arrays() const;
 
   const KdTree& tree_;  // its node and leaf arrays are traced where they are
-  TraversalArray<float> leaf_vertices_;  // gather_leaf_vertices
   std::vector<uint32_t> empty_leaves_;    // empty_leaf_bits
 };
 
 // One-batch forms of PreparedTraversal::closest and ::any.
-void trace_closest(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
-                   std::vector<HitRecord>& hits, const TraceOptions& options = {});
-void trace_any(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
-               std::vector<uint8_t>& occluded, const TraceOptions& options = {});
+void trace_closest(const KdTree& tree, const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
+                   const TraceOptions& options = {});
+void trace_any(const KdTree& tree, const std::vector<RayRecord>& rays, std::vector<uint8_t>& occluded,
+               const TraceOptions& options = {});
 
-// One ray, on the calling thread. Gathers the triangle vertices for this one ray, so it is for
+// One ray, on the calling thread. Derives the empty-leaf bits for this one ray, so it is for
 // tests and single queries; batches belong in trace_closest.
-HitRecord intersect_closest(const Scene& scene, const KdTree& tree, const RayRecord& ray,
-                            TraversalStack stack = TraversalStack::Short);
+HitRecord intersect_closest(const KdTree& tree, const RayRecord& ray, TraversalStack stack = TraversalStack::Short);
 
 }  // namespace kdray

@@ -5,13 +5,17 @@
 
 #include <xxhash.h>
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <memory>
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -205,6 +209,42 @@ ContainerContents read_container(const std::string& path, const char (&magic)[8]
   if (XXH3_64bits_digest(state) != header.payload_checksum)
     throw Error(path, "checksum mismatch: the file is damaged");
   return std::move(opened.contents);
+}
+
+MappedContainer map_container(const std::string& path, const char (&magic)[8], uint32_t max_version,
+                              const char* kind_name, const std::function<void(const MappedContainer&)>& check_alongside) {
+  OpenedContainer opened = open_and_validate(path, magic, max_version, kind_name);
+  const format::FileHeader& header = opened.contents.header;
+  const uint64_t file_size = sizeof header + header.payload_size;
+  // MAP_POPULATE: the checksum reads every page next, so they are mapped in one call rather
+  // than one fault per page.
+  void* address = ::mmap(nullptr, file_size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, opened.file->get(), 0);
+  if (address == MAP_FAILED) throw Error(path, std::string("cannot map: ") + std::strerror(errno));
+  MappedContainer file;
+  file.mapping = std::shared_ptr<const void>(address, [file_size](const void* start) {
+    ::munmap(const_cast<void*>(start), file_size);
+  });
+  file.bytes = static_cast<const char*>(address);
+  file.contents = std::move(opened.contents);
+  // The table was read before the mapping: the same bytes, or the file changed in between.
+  const auto& sections = file.contents.sections;
+  if (std::memcmp(file.bytes + sizeof header, sections.data(), sections.size() * sizeof(format::SectionEntry)) != 0)
+    throw Error(path, "the file changed while it was read");
+  bool intact = false;
+  std::exception_ptr check_failure;
+  tbb::parallel_invoke(
+      [&] { intact = XXH3_64bits(file.bytes + sizeof header, header.payload_size) == header.payload_checksum; },
+      [&] {
+        if (!check_alongside) return;
+        try {
+          check_alongside(file);
+        } catch (...) {
+          check_failure = std::current_exception();
+        }
+      });
+  if (!intact) throw Error(path, "checksum mismatch: the file is damaged");
+  if (check_failure) std::rethrow_exception(check_failure);
+  return file;
 }
 
 std::string file_magic(const std::string& path) {

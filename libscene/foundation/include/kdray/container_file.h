@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,24 @@ struct ContainerContents {
 ContainerContents read_container(const std::string& path, const char (&magic)[8],
                                  uint32_t max_version, const char* kind_name,
                                  const SectionSink& sink);
+
+// A container's bytes mapped read-only, checked as read_container checks them (the checksum
+// included): section s's bytes are at bytes + s.offset. The mapping lives while any copy of
+// `mapping` does, so arrays that view it can share it. The file's pages are the page cache's:
+// nothing is copied or zero-filled, which is what makes a load cost about a read of the file.
+// A file must not be truncated while mapped (writers replace files by rename, which does not).
+struct MappedContainer {
+  std::shared_ptr<const void> mapping;
+  const char* bytes = nullptr;
+  ContainerContents contents;
+};
+// `check_alongside` (optional) runs on the mapped container while the checksum is computed on
+// another thread, so a reader's own pass over the sections costs no extra time: it may read any
+// byte inside a section and must not act on one, since nothing is trusted until this returns.
+// A checksum mismatch is the error thrown, whatever the check found; else the check's error.
+MappedContainer map_container(const std::string& path, const char (&magic)[8], uint32_t max_version,
+                              const char* kind_name,
+                              const std::function<void(const MappedContainer&)>& check_alongside = {});
 
 // Reads only the header and section table (validated against the file size, no checksum):
 // cheap identification for kdinfo and for stale-tree checks before a full load.

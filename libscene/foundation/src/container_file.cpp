@@ -132,37 +132,35 @@ void write_container(const std::string& path, const ContainerHeaderInfo& info,
   const uint64_t file_size = sections.empty() ? sizeof header + 0 : table.back().offset + table.back().size;
   header.payload_size = file_size - sizeof header;
 
-  // The checksum covers everything after the header, padding included, in file order.
+  // The checksum covers everything after the header, padding included, in file order. It is
+  // computed as the payload is written, each piece while it is still in cache, and the header
+  // that records it is written last, over a placeholder.
   static const char kZeros[format::kSectionAlignment] = {};
-  XXH3_state_t* state = XXH3_createState();
-  XXH3_64bits_reset(state);
-  uint64_t position = sizeof header;
-  auto feed = [&](const void* data, uint64_t size) {
-    XXH3_64bits_update(state, data, size);
-    position += size;
-  };
-  feed(table.data(), table.size() * sizeof(format::SectionEntry));
-  for (size_t i = 0; i < sections.size(); ++i) {
-    feed(kZeros, table[i].offset - position);
-    feed(sections[i].data, sections[i].size);
-  }
-  header.payload_checksum = XXH3_64bits_digest(state);
-  XXH3_freeState(state);
-
   AtomicFile output(path);
   FileDescriptor file(::open(output.temporary_path().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
   if (file.get() < 0) throw Error(path, std::string("cannot create: ") + std::strerror(errno));
-  position = 0;
-  auto put = [&](const void* data, uint64_t size) {
-    write_all(file.get(), data, size, path);
+  std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(), &XXH3_freeState);
+  XXH3_64bits_reset(state.get());
+  uint64_t position = 0;
+  auto put = [&](const void* data, uint64_t size, bool hashed) {
+    constexpr uint64_t kPiece = uint64_t{1} << 20;
+    const char* bytes = static_cast<const char*>(data);
+    for (uint64_t done = 0; done < size; done += kPiece) {
+      const uint64_t piece = std::min(kPiece, size - done);
+      if (hashed) XXH3_64bits_update(state.get(), bytes + done, piece);
+      write_all(file.get(), bytes + done, piece, path);
+    }
     position += size;
   };
-  put(&header, sizeof header);
-  put(table.data(), table.size() * sizeof(format::SectionEntry));
+  put(&header, sizeof header, false);
+  put(table.data(), table.size() * sizeof(format::SectionEntry), true);
   for (size_t i = 0; i < sections.size(); ++i) {
-    put(kZeros, table[i].offset - position);
-    put(sections[i].data, sections[i].size);
+    put(kZeros, table[i].offset - position, true);
+    put(sections[i].data, sections[i].size, true);
   }
+  header.payload_checksum = XXH3_64bits_digest(state.get());
+  if (::pwrite(file.get(), &header, sizeof header, 0) != static_cast<ssize_t>(sizeof header))
+    throw Error(path, std::string("cannot write: ") + std::strerror(errno));
   if (::close(file.release()) != 0) throw Error(path, std::string("cannot close: ") + std::strerror(errno));
   output.commit();
 }

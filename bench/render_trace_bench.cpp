@@ -16,12 +16,12 @@
 
 namespace {
 
-double median_mrays(const kdray::Scene& scene, const kdray::KdTree& tree, const std::vector<RayRecord>& rays) {
-  kdray::trace_rays_opencl(scene, tree, rays, {});  // warm-up: program build, first touch
+double median_mrays(const kdray::KdTree& tree, const std::vector<RayRecord>& rays) {
+  kdray::trace_rays_opencl(tree, rays, {});  // warm-up: program build, first touch
   std::vector<double> rates;
   for (int run = 0; run < 3; ++run) {
     kdray::TraceOpenClStats stats;
-    kdray::trace_rays_opencl(scene, tree, rays, {}, &stats);
+    kdray::trace_rays_opencl(tree, rays, {}, &stats);
     rates.push_back(double(rays.size()) / stats.trace_seconds * 1e-6);
   }
   std::sort(rates.begin(), rates.end());
@@ -41,8 +41,8 @@ int main(int argc, char** argv) {
     kdray::KdTree tree = kdray::read_tree(argv[2]);
     kdray::check_tree_matches_scene(tree, argv[2], scene, argv[1]);
     uint32_t side = static_cast<uint32_t>(std::sqrt(double(count)));
-    double camera = median_mrays(scene, tree, kdray::camera_rays(scene, side, side));
-    double random = median_mrays(scene, tree, kdray::random_rays(tree.bounds, count, 1));
+    double camera = median_mrays(tree, kdray::camera_rays(scene, side, side));
+    double random = median_mrays(tree, kdray::random_rays(tree.bounds, count, 1));
     nlohmann::json report = {{"scene", argv[1]},
                              {"triangles", scene.triangle_count()},
                              {"camera_rays", side * side},

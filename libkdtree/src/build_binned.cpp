@@ -155,7 +155,7 @@ class BinnedBuilder {
         consider_split(context_.cost, areas, axis, position, n_left, n_right, planar[k], split);
       }
     }
-    if (split.axis >= 0 && !(split.cost < context_.cost.leaf_cost(n))) split.axis = -1;
+    if (split.axis >= 0 && !context_.cost.split_pays(split, n, node.voxel)) split.axis = -1;
     return split;
   }
 

@@ -62,6 +62,22 @@ CostModel cost_model_of(const BuildSettings& settings) {
   return CostModel{settings.traversal_cost, settings.intersection_cost, settings.empty_bonus};
 }
 
+CostModel cost_model_of(const BuildSettings& settings, const Box3& root_voxel, uint64_t triangles) {
+  CostModel cost = cost_model_of(settings);
+  if (triangles > 0) cost.reference_price = cost.intersection * surface_area(root_voxel) / static_cast<double>(triangles);
+  return cost;
+}
+
+bool CostModel::split_pays(const SplitChoice& split, uint64_t n, const Box3& voxel) const {
+  const double leaf = leaf_cost(n);
+  if (!(split.cost < leaf)) return false;
+  const uint64_t references = split.n_left + split.n_right;
+  if (references <= n) return true;
+  // Both sides in the node's cost units (one ray entering the node) times its area: the saving
+  // and the price weighed per ray entering the root, up to the root's area.
+  return (leaf - split.cost) * surface_area(voxel) > reference_price * static_cast<double>(references - n);
+}
+
 namespace {
 
 // What an event adds to the counts of its run of equal positions, by type: ends and planar

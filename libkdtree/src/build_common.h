@@ -56,16 +56,31 @@ struct StraddlerBounds {
 StraddlerBounds straddler_bounds(const Scene& scene, uint32_t triangle, const Box3& parent_bounds,
                                  const Box3 (&child_voxels)[2], int axis, bool perfect_splits);
 
+struct SplitChoice;
+
 // Seed cost: lambda * (K_T + K_I * (P_L N_L + P_R N_R)), lambda = empty bonus when one side is
 // empty and neither side is the whole voxel.
 struct CostModel {
   double traversal;
   double intersection;
   double empty_bonus;
+  // What the builders charge for each reference a split adds (straddlers counted on both sides),
+  // per unit of the node's surface area: K_I x root area / N. The SAH alone takes any split
+  // cheaper than the leaf, however little it saves for the references it duplicates; where
+  // long thin triangles overlap deep, splits that save almost nothing double the references
+  // level after level (a 1.2M-triangle stress mesh reached 66 per triangle). At this price, N
+  // more references must lower the whole tree's cost by at least one triangle test per ray.
+  // 0 (cost_model_of(settings)): references are free, for costing finished trees.
+  double reference_price = 0;
   double split_cost(double p_left, double p_right, uint64_t n_left, uint64_t n_right) const;
   double leaf_cost(uint64_t n) const { return intersection * static_cast<double>(n); }
+  // Whether `split` of a node of `n` triangles in `voxel` is taken: it must cost less than the
+  // leaf, by more than the price of the references it adds.
+  bool split_pays(const SplitChoice& split, uint64_t n, const Box3& voxel) const;
 };
 CostModel cost_model_of(const BuildSettings& settings);
+// The builders' cost model for a root `voxel` of `triangles` triangles, references priced.
+CostModel cost_model_of(const BuildSettings& settings, const Box3& root_voxel, uint64_t triangles);
 
 // One boundary of one triangle on one axis. Sorted by position, then type (end < planar <
 // start: the sweep needs the ends first), then triangle, a total order, so sorted lists
@@ -135,6 +150,9 @@ struct SplitChoice {
   int axis = -1;  // -1: no split found yet
   float position = 0;
   bool planar_left = false;
+  // The triangles the cost counted on each side (before clipping drops a straddler that only
+  // touches a side at a corner of its bounds).
+  uint64_t n_left = 0, n_right = 0;
 };
 
 // Surface areas of the two children of a voxel split on one axis, as fractions of the voxel's:
@@ -185,7 +203,9 @@ inline void consider_split(const CostModel& cost, const SplitAreas& areas, int a
     planar_left = planar_left_cost <= planar_right_cost;
     split_cost = planar_left ? planar_left_cost : planar_right_cost;
   }
-  if (best.axis < 0 || split_cost < best.cost) best = SplitChoice{split_cost, axis, position, planar_left};
+  if (best.axis < 0 || split_cost < best.cost)
+    best = SplitChoice{split_cost, axis, position, planar_left, n_left + (planar_left ? planar : 0),
+                       n_right + (planar_left ? 0 : planar)};
 }
 
 // Sweeps the sorted events of one axis of a voxel holding `triangles` triangles and keeps the

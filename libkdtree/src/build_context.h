@@ -1,5 +1,5 @@
-// What the parts of one build share: the scene, the settings, the cost model, the depth limit
-// resolved for the scene, and the progress report.
+// What the parts of one build share: the scene, the settings, the cost model (with the price of
+// a reference for this root), the depth limit resolved for the scene, and the progress report.
 #pragma once
 
 #include "build_common.h"
@@ -26,11 +26,13 @@ class FinishedSubtrees {
 };
 
 struct BuildContext {
-  // `settings` resolved (BuildSettings::resolved): max_depth is the limit applied.
-  BuildContext(const Scene& scene, const BuildSettings& settings, const BuildControl& control)
+  // `settings` resolved (BuildSettings::resolved): max_depth is the limit applied. The root
+  // voxel holds `triangles` triangles.
+  BuildContext(const Scene& scene, const BuildSettings& settings, const BuildControl& control, const Box3& root_voxel,
+               uint64_t triangles)
       : scene(scene),
         settings(settings),
-        cost(cost_model_of(settings)),
+        cost(cost_model_of(settings, root_voxel, triangles)),
         max_depth(settings.max_depth),
         small_parameters{cost, max_depth, settings.perfect_splits},
         finished(control.progress) {}

@@ -137,7 +137,7 @@ class EventBuilder {
       for (int axis = 0; axis < 3; ++axis) sweep(axis);
     for (const SplitChoice& candidate : per_axis)
       if (candidate.axis >= 0 && (split.axis < 0 || candidate.cost < split.cost)) split = candidate;
-    if (split.axis >= 0 && !(split.cost < cost_.leaf_cost(n))) split.axis = -1;
+    if (split.axis >= 0 && !cost_.split_pays(split, n, work.voxel)) split.axis = -1;
     return split;
   }
 

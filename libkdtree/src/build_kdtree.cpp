@@ -38,7 +38,7 @@ KdTree build_kdtree(const Scene& scene, const BuildSettings& given, const BuildC
     detail::RootWork root = detail::prepare_root(scene);
     lap(timings.prepare);
     const detail::Box3 voxel = root.voxel;
-    detail::BuildContext context(scene, settings, control);
+    detail::BuildContext context(scene, settings, control, voxel, root.triangles.size());
     detail::Piece root_piece;
     if (detail::binned(settings, root.triangles.size())) {
       detail::BinnedNode node{voxel, 0, std::move(root.triangles), std::move(root.bounds)};

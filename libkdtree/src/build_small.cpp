@@ -75,7 +75,7 @@ class SmallBuilder {
     // One best over x, y, z in turn: what the per-axis bests combined in axis order give.
     for (int axis = 0; axis < 3; ++axis)
       sweep_axis(node.events[axis], node.event_count[axis], axis, node.voxel, node.count, parameters_.cost, split);
-    if (split.axis >= 0 && !(split.cost < parameters_.cost.leaf_cost(node.count))) split.axis = -1;
+    if (split.axis >= 0 && !parameters_.cost.split_pays(split, node.count, node.voxel)) split.axis = -1;
     return split;
   }
 

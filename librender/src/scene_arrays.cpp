@@ -96,7 +96,7 @@ void add_emitters(SceneArrays& arrays, const Scene& scene) {
 
 }  // namespace
 
-GeometryArrays geometry_arrays(const Scene& scene, const KdTree& tree) {
+GeometryArrays geometry_arrays(const KdTree& tree) {
   GeometryArrays geometry;
   geometry.nodes = host_array(tree.nodes);
   geometry.leaf_triangles = host_array(tree.leaf_triangles);
@@ -112,7 +112,7 @@ GeometryArrays geometry_arrays(const Scene& scene, const KdTree& tree) {
 
 SceneArrays scene_arrays(const Scene& scene, const KdTree& tree, const Environment* environment) {
   SceneArrays arrays;
-  arrays.geometry = geometry_arrays(scene, tree);
+  arrays.geometry = geometry_arrays(tree);
   arrays.gathered_vertices = gather_triangle_vertices(scene);
   arrays.triangle_vertices = host_array(arrays.gathered_vertices);
   arrays.indices = host_array(scene.indices);

@@ -66,7 +66,7 @@ struct SceneArrays {
   SceneArrays& operator=(const SceneArrays&) = delete;
 };
 
-GeometryArrays geometry_arrays(const Scene& scene, const KdTree& tree);
+GeometryArrays geometry_arrays(const KdTree& tree);
 // environment may be null (then its arrays are empty).
 SceneArrays scene_arrays(const Scene& scene, const KdTree& tree, const Environment* environment);
 

@@ -51,7 +51,7 @@ TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu) {
   return {options + " -DKD_PREFETCH_NODES", "one-ray-per-work-item+prefetch", traversal};
 }
 
-std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
+std::vector<HitRecord> trace_rays_opencl(const KdTree& tree, const std::vector<RayRecord>& rays,
                                          const DeviceSelection& device, TraceOpenClStats* stats_out) {
   TraceOpenClStats stats;
   cl::Runtime& runtime = cl::runtime_for(device);
@@ -64,7 +64,7 @@ std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree,
   stats.build_source = build.source;
 
   auto upload_start = Clock::now();
-  const GeometryArrays arrays = geometry_arrays(scene, tree);
+  const GeometryArrays arrays = geometry_arrays(tree);
   DeviceGeometry geometry = upload_geometry(runtime, arrays);
   // The kernel's arguments that are not DeviceGeometry buffers, named as in KD_TRACE_ARGS.
   struct {

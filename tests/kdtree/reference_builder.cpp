@@ -12,8 +12,8 @@ using namespace kdray::detail;
 
 class ResortingBuilder {
  public:
-  ResortingBuilder(const Scene& scene, const BuildSettings& settings, uint32_t max_depth)
-      : scene_(scene), settings_(settings), cost_(cost_model_of(settings)), max_depth_(max_depth) {}
+  ResortingBuilder(const Scene& scene, const BuildSettings& settings, const CostModel& cost, uint32_t max_depth)
+      : scene_(scene), settings_(settings), cost_(cost), max_depth_(max_depth) {}
 
   void build(const Box3& voxel, uint32_t depth, const std::vector<uint32_t>& triangles,
              const std::vector<Box3>& bounds, Subtree& out) const {
@@ -27,7 +27,7 @@ class ResortingBuilder {
         sweep_axis(events[axis].data(), events[axis].size(), axis, voxel, n, cost_, split);
       }
     }
-    if (split.axis < 0 || !(split.cost < cost_.leaf_cost(n))) {
+    if (split.axis < 0 || !cost_.split_pays(split, n, voxel)) {
       out.add_leaf(triangles.data(), n);
       return;
     }
@@ -74,7 +74,8 @@ KdTree build_kdtree_by_resorting(const Scene& scene, const BuildSettings& given)
   const BuildSettings settings = given.resolved(scene.triangle_count());
   const RootWork root = prepare_root(scene);
   Subtree built;
-  ResortingBuilder(scene, settings, settings.max_depth)
+  const CostModel cost = cost_model_of(settings, root.voxel, root.triangles.size());
+  ResortingBuilder(scene, settings, cost, settings.max_depth)
       .build(root.voxel, 0, root.triangles, root.bounds, built);
   return finish_tree(scene, settings, root.voxel, std::move(built));
 }

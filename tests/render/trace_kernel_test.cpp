@@ -60,7 +60,7 @@ TEST_F(TraceKernel, HitsEqualTheCpuTraversalOnTheFandisk) {
   ASSERT_GE(rays.size(), 100000u);
   std::vector<HitRecord> cpu;
   trace_closest(*tree_, rays, cpu);
-  std::vector<HitRecord> device = trace_rays_opencl(*scene_, *tree_, rays, DeviceSelection{});
+  std::vector<HitRecord> device = trace_rays_opencl(*tree_, rays, DeviceSelection{});
   ASSERT_EQ(device.size(), rays.size());
   size_t hits = 0;
   for (const HitRecord& hit : cpu) hits += hit.triangle != KD_NO_HIT;
@@ -76,7 +76,7 @@ TEST_F(TraceKernel, ShortStackOfOneGivesTheSameHits) {
   trace_closest(*tree_, rays, cpu, TraceOptions{0, TraversalStack::Depth1});
   DeviceSelection depth_one;
   depth_one.short_stack_size = 1;
-  EXPECT_EQ(count_differences(cpu, trace_rays_opencl(*scene_, *tree_, rays, depth_one)), 0u);
+  EXPECT_EQ(count_differences(cpu, trace_rays_opencl(*tree_, rays, depth_one)), 0u);
 }
 
 // A device compiles its own traversal unless one is named: the robust code alone on a GPU, where
@@ -105,8 +105,8 @@ TEST_F(TraceKernel, RobustTraversalOnPoclGivesTheSameHits) {
   DeviceSelection fast{"cpu"}, robust{"cpu"};
   robust.traversal = TraversalPath::Robust;
   TraceOpenClStats fast_stats, robust_stats;
-  const std::vector<HitRecord> fast_hits = trace_rays_opencl(*scene_, *tree_, rays, fast, &fast_stats);
-  EXPECT_EQ(count_differences(fast_hits, trace_rays_opencl(*scene_, *tree_, rays, robust, &robust_stats)), 0u);
+  const std::vector<HitRecord> fast_hits = trace_rays_opencl(*tree_, rays, fast, &fast_stats);
+  EXPECT_EQ(count_differences(fast_hits, trace_rays_opencl(*tree_, rays, robust, &robust_stats)), 0u);
   EXPECT_EQ(fast_stats.traversal, TraversalPath::FastWhereSafe);
   EXPECT_EQ(robust_stats.traversal, TraversalPath::Robust);
 }
@@ -118,9 +118,9 @@ TEST(TraceKernelEdges, NoRaysGiveNoHits) {
   scene.material_ids = {0};
   scene.materials.resize(1);
   KdTree tree = test::tree_for(scene);
-  EXPECT_TRUE(trace_rays_opencl(scene, tree, {}, DeviceSelection{}).empty());
+  EXPECT_TRUE(trace_rays_opencl(tree, {}, DeviceSelection{}).empty());
   RayRecord ray{0.25f, 0.25f, 1, 0, 0, -1, 0, 1e30f};
-  std::vector<HitRecord> hits = trace_rays_opencl(scene, tree, {ray}, DeviceSelection{});
+  std::vector<HitRecord> hits = trace_rays_opencl(tree, {ray}, DeviceSelection{});
   ASSERT_EQ(hits.size(), 1u);
   EXPECT_EQ(hits[0].triangle, 0u);
   EXPECT_FLOAT_EQ(hits[0].t, 1.0f);

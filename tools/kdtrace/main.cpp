@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
     std::optional<kdray::PreparedTraversal> prepared;
     if (host || o.flags.json) prepared.emplace(tree);
     const kdtrace::TraceRun run =
-        kdtrace::trace_on(host ? &*prepared : nullptr, scene, tree, rays, options, kdtrace::opencl_selection(o));
+        kdtrace::trace_on(host ? &*prepared : nullptr, tree, rays, options, kdtrace::opencl_selection(o));
     if (!o.hits_path.empty()) kdray::write_hits(o.hits_path, run.hits);
 
     if (o.flags.json) {

@@ -18,7 +18,7 @@ std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene& scene
   return rays;
 }
 
-TraceRun trace_on(const kdray::PreparedTraversal* host_traversal, const kdray::Scene& scene, const kdray::KdTree& tree,
+TraceRun trace_on(const kdray::PreparedTraversal* host_traversal, const kdray::KdTree& tree,
                   const std::vector<RayRecord>& rays, const kdray::TraceOptions& options,
                   kdray::DeviceSelection opencl_device) {
   TraceRun run;
@@ -29,7 +29,7 @@ TraceRun trace_on(const kdray::PreparedTraversal* host_traversal, const kdray::S
     run.traversal = options.path;
   } else {
     opencl_device.short_stack_size = kdray::kernel_stack_size(options.stack);
-    run.hits = kdray::trace_rays_opencl(scene, tree, rays, opencl_device, &run.opencl);
+    run.hits = kdray::trace_rays_opencl(tree, rays, opencl_device, &run.opencl);
     run.traversal = run.opencl.traversal;
   }
   run.seconds = host_traversal ? kdray::seconds_since(start) : run.opencl.trace_seconds;

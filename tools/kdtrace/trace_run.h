@@ -27,7 +27,7 @@ std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene& scene
 
 // On the host with `host_traversal` (prepared beforehand: its set-up is not part of the rate),
 // else on the OpenCL device (opencl_selection).
-TraceRun trace_on(const kdray::PreparedTraversal* host_traversal, const kdray::Scene& scene, const kdray::KdTree& tree,
+TraceRun trace_on(const kdray::PreparedTraversal* host_traversal, const kdray::KdTree& tree,
                   const std::vector<RayRecord>& rays, const kdray::TraceOptions& options,
                   kdray::DeviceSelection opencl_device);
 

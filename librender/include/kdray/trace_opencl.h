@@ -54,7 +54,7 @@ struct TraceKernelBuild {
 TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu);
 
 // Same contract as trace_closest (libkdtree): t = +inf and KD_NO_HIT on a miss.
-std::vector<HitRecord> trace_rays_opencl(const Scene& scene, const KdTree& tree, const std::vector<RayRecord>& rays,
+std::vector<HitRecord> trace_rays_opencl(const KdTree& tree, const std::vector<RayRecord>& rays,
                                          const DeviceSelection& device, TraceOpenClStats* stats = nullptr);
 
 }  // namespace kdray

@@ -3,7 +3,10 @@
 #include <kdray/atomic_file.h>
 #include <kdray/container_file.h>
 #include <kdray/error.h>
+#include <kdray/scene_file.h>
 #include <kdray/util.h>
+
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -214,15 +217,19 @@ CachedTree cached_tree(TreeCache& cache, const Scene& scene, const std::string& 
   return {std::move(tree), false, std::move(entry)};
 }
 
-KdTree tree_for_scene(const Scene& scene, const std::string& scene_path, const std::string& tree_path,
-                      const std::string& cache_folder, const CacheWarning& warn) {
+SceneAndTree read_scene_and_tree(const std::string& scene_path, const std::string& tree_path,
+                                 const std::string& cache_folder, const CacheWarning& warn) {
+  SceneAndTree read;
   if (cache_folder.empty()) {
-    KdTree tree = read_tree(tree_path);
-    check_tree_matches_scene(tree, tree_path, scene, scene_path);
-    return tree;
+    // Two independent files: read at once, each with its checksum beside its own checks.
+    tbb::parallel_invoke([&] { read.scene = read_scene(scene_path); }, [&] { read.tree = read_tree(tree_path); });
+    check_tree_matches_scene(read.tree, tree_path, read.scene, scene_path);
+    return read;
   }
+  read.scene = read_scene(scene_path);
   TreeCache cache(cache_folder, warn);
-  return cached_tree(cache, scene, scene_path, BuildSettings{}).tree;
+  read.tree = cached_tree(cache, read.scene, scene_path, BuildSettings{}).tree;
+  return read;
 }
 
 }  // namespace kdray

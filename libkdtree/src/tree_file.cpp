@@ -9,12 +9,11 @@
 
 #include <xxhash.h>
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_invoke.h>
-#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <memory>
 #include <sstream>
@@ -153,22 +152,6 @@ void validate_subtree(const KdTree& tree, uint64_t begin, uint64_t end, uint32_t
                        [&] { validate_subtree(tree, far, end, depth + 1, path); });
 }
 
-// The whole tree, then every triangle index below the triangle count of the statistics.
-void validate_structure(const KdTree& tree, const std::string& path) {
-  if (tree.nodes.empty()) throw Error(path, "damaged tree: no nodes");
-  validate_subtree(tree, 0, tree.nodes.size(), 0, path);
-  const uint32_t largest = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, tree.leaf_triangles.size(), size_t{1} << 16), uint32_t{0},
-      [&](const tbb::blocked_range<size_t>& range, uint32_t value) {
-        for (size_t i = range.begin(); i < range.end(); ++i) value = std::max(value, tree.leaf_triangles[i].triangle);
-        return value;
-      },
-      [](uint32_t a, uint32_t b) { return std::max(a, b); });
-  if (!tree.leaf_triangles.empty() && largest >= tree.stats.triangles)
-    throw Error(path, "damaged tree: triangle index " + std::to_string(largest) + " beyond the scene's " +
-                          std::to_string(tree.stats.triangles));
-}
-
 // The key over (size, bytes) parts: the geometry hash, the encoded settings (section 3's bytes)
 // and the format version (formats/kdtree.md).
 uint64_t key_of(uint64_t geometry_hash, const std::string& encoded_settings) {
@@ -267,18 +250,37 @@ KdTree tree_of(const MappedContainer& file, const std::string& path) {
   tree.settings = decode_settings(parameters, path);
   tree.stats = from_portable_binary<TreeStats>(statistics, path, "statistics");
   tree.bounds = Bounds{{bounds[0], bounds[1], bounds[2]}, {bounds[3], bounds[4], bounds[5]}};
-  validate_structure(tree, path);
+  if (tree.nodes.empty()) throw Error(path, "damaged tree: no nodes");
+  validate_subtree(tree, 0, tree.nodes.size(), 0, path);
   return tree;
 }
 
 }  // namespace
 
 KdTree read_tree(const std::string& path) {
-  // The file is mapped and the tree's two arrays view it; the structure is checked while the
-  // checksum is computed, and used only once both pass.
+  // The file is mapped and the tree's two arrays view it. The structure is checked while the
+  // checksum is computed, and the leaf triangles' indices as the checksum reads them: one pass
+  // over the file, and nothing used before all pass.
   KdTree tree;
-  map_container(path, format::kTreeMagic, format::kTreeVersion, "kdtree",
-                [&](const MappedContainer& file) { tree = tree_of(file, path); });
+  uint32_t largest_triangle = 0;
+  map_container(
+      path, format::kTreeMagic, format::kTreeVersion, "kdtree", [&](const MappedContainer& file) { tree = tree_of(file, path); },
+      [&](const format::SectionEntry& section, const char* bytes, uint64_t begin, uint64_t end) {
+        if (section.id != format::kTreeLeafTriangles) return;
+        // The index field of each record that lies in [begin, end); pieces are multiples of 16
+        // bytes and records of 40, so no field is split between two pieces.
+        constexpr uint64_t kRecord = sizeof(KdLeafTriangle), kField = offsetof(KdLeafTriangle, triangle);
+        uint32_t largest = largest_triangle;
+        for (uint64_t field = (begin + kRecord - 1 - kField) / kRecord * kRecord + kField; field + 4 <= end; field += kRecord) {
+          uint32_t triangle;
+          std::memcpy(&triangle, bytes + field, sizeof triangle);
+          largest = std::max(largest, triangle);
+        }
+        largest_triangle = largest;
+      });
+  if (!tree.leaf_triangles.empty() && largest_triangle >= tree.stats.triangles)
+    throw Error(path, "damaged tree: triangle index " + std::to_string(largest_triangle) + " beyond the scene's " +
+                          std::to_string(tree.stats.triangles));
   return tree;
 }
 

@@ -15,7 +15,6 @@
 #include <kdray/image_io.h>
 #include <kdray/kdtree.h>
 #include <kdray/render.h>
-#include <kdray/scene_file.h>
 #include <kdray/tree_cache.h>
 
 #include <device_option.h>
@@ -117,10 +116,12 @@ int render(const Options& o) {
                                estimated_render_bytes(o, o.jobs_path.empty() ? frame.settings : o.frame.settings),
                                o.max_memory);
   auto load_start = Clock::now();
-  kdray::Scene scene = kdray::read_scene(o.scene_path);
-  kdray::KdTree tree = kdray::tree_for_scene(scene, o.scene_path, o.tree_path, o.cache_folder, [](const std::string& line) {
-    kdray::tool::print_warning("kdrender", line);
-  });
+  kdray::SceneAndTree read = kdray::read_scene_and_tree(o.scene_path, o.tree_path, o.cache_folder,
+                                                       [](const std::string& line) {
+                                                         kdray::tool::print_warning("kdrender", line);
+                                                       });
+  kdray::Scene& scene = read.scene;
+  kdray::KdTree& tree = read.tree;
   double load_seconds = kdray::seconds_since(load_start);
   if (!o.jobs_path.empty()) {
     return kdrender::run_batch(scene, tree, o.frame, {o.scene_path, o.jobs_path, o.resume, o.flags.json, o.flags.quiet},

@@ -8,7 +8,6 @@
 #include "trace_run.h"
 
 #include <kdray/ray_files.h>
-#include <kdray/scene_file.h>
 #include <kdray/tree_cache.h>
 
 #include "device_option.h"
@@ -27,10 +26,11 @@ int main(int argc, char** argv) {
     const kdray::tool::DeviceKind device = kdtrace::checked_device(o);
     if (device == kdray::tool::DeviceKind::List) return kdray::tool::list_opencl_devices(o.flags.json);
     const bool host = device == kdray::tool::DeviceKind::Host;
-    const kdray::Scene scene = kdray::read_scene(o.scene_path);
-    const kdray::KdTree tree =
-        kdray::tree_for_scene(scene, o.scene_path, o.tree_path, o.cache_folder,
-                              [](const std::string& line) { kdray::tool::print_warning("kdtrace", line); });
+    const kdray::SceneAndTree read = kdray::read_scene_and_tree(
+        o.scene_path, o.tree_path, o.cache_folder,
+        [](const std::string& line) { kdray::tool::print_warning("kdtrace", line); });
+    const kdray::Scene& scene = read.scene;
+    const kdray::KdTree& tree = read.tree;
     const std::vector<RayRecord> rays = kdtrace::rays_to_trace(o, scene, tree);
     const kdray::TraceOptions options = kdtrace::traversal_options(o, host);
     // The host traversal's set-up (the empty-leaf bits), done once for a host run and for the

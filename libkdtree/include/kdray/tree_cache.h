@@ -83,9 +83,14 @@ CachedTree cached_tree(TreeCache& cache, const Scene& scene, const std::string& 
                        const BuildSettings& settings, const BuildControl& control = {},
                        const std::string& output = {});
 
-// The tree a tool uses with `scene`: read from `tree_path` and checked against the scene, or, when
-// `cache_folder` is given instead, found in that cache or built there with the default settings.
-KdTree tree_for_scene(const Scene& scene, const std::string& scene_path, const std::string& tree_path,
-                      const std::string& cache_folder, const CacheWarning& warn);
+// The scene at `scene_path` and the tree a tool uses with it: read from `tree_path` (both files
+// at once) and checked against the scene, or, when `cache_folder` is given instead, found in
+// that cache or built there with the default settings.
+struct SceneAndTree {
+  Scene scene;
+  KdTree tree;
+};
+SceneAndTree read_scene_and_tree(const std::string& scene_path, const std::string& tree_path,
+                                 const std::string& cache_folder, const CacheWarning& warn);
 
 }  // namespace kdray

@@ -3,7 +3,9 @@
 #include <kdray/error.h>
 #include <kdray/util.h>
 
-#include <xxhash.h>
+// The dispatching XXH3 (SSE2, AVX2 or AVX-512, chosen at run time) under the usual names: the
+// checksum of a large file is what a load waits on, and the plain build is SSE2 only.
+#include <xxh_x86dispatch.h>
 
 #include <tbb/parallel_invoke.h>
 
@@ -170,47 +172,9 @@ ContainerContents peek_container(const std::string& path, const char (&magic)[8]
   return open_and_validate(path, magic, max_version, kind_name).contents;
 }
 
-ContainerContents read_container(const std::string& path, const char (&magic)[8], uint32_t max_version,
-                                 const char* kind_name, const SectionSink& sink) {
-  OpenedContainer opened = open_and_validate(path, magic, max_version, kind_name);
-  const auto& header = opened.contents.header;
-  const auto& sections = opened.contents.sections;
-  const int fd = opened.file->get();
-
-  XXH3_state_t* state = XXH3_createState();
-  std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state_owner(state, &XXH3_freeState);
-  XXH3_64bits_reset(state);
-  XXH3_64bits_update(state, sections.data(), sections.size() * sizeof(format::SectionEntry));
-  uint64_t position = sizeof header + sections.size() * sizeof(format::SectionEntry);
-  std::vector<char> scratch;
-  for (const auto& section : sections) {
-    const uint64_t padding = section.offset - position;
-    char pad[format::kSectionAlignment];
-    if (!read_all(fd, pad, padding, path)) throw Error(path, "truncated");
-    XXH3_64bits_update(state, pad, padding);
-    void* destination = sink(section.id, section.size);
-    if (destination == nullptr) {
-      scratch.resize(section.size);
-      destination = scratch.data();
-    }
-    // Hashed piece by piece as it arrives, while each piece is still in cache: one pass over
-    // memory rather than a read pass and a hash pass.
-    constexpr uint64_t kPiece = uint64_t{256} << 10;
-    for (uint64_t done = 0; done < section.size; done += kPiece) {
-      char* piece = static_cast<char*>(destination) + done;
-      const uint64_t size = std::min(kPiece, section.size - done);
-      if (!read_all(fd, piece, size, path)) throw Error(path, "truncated");
-      XXH3_64bits_update(state, piece, size);
-    }
-    position = section.offset + section.size;
-  }
-  if (XXH3_64bits_digest(state) != header.payload_checksum)
-    throw Error(path, "checksum mismatch: the file is damaged");
-  return std::move(opened.contents);
-}
-
 MappedContainer map_container(const std::string& path, const char (&magic)[8], uint32_t max_version,
-                              const char* kind_name, const std::function<void(const MappedContainer&)>& check_alongside) {
+                              const char* kind_name, const std::function<void(const MappedContainer&)>& check_alongside,
+                              const PieceInspector& inspect_piece) {
   OpenedContainer opened = open_and_validate(path, magic, max_version, kind_name);
   const format::FileHeader& header = opened.contents.header;
   const uint64_t file_size = sizeof header + header.payload_size;
@@ -231,7 +195,26 @@ MappedContainer map_container(const std::string& path, const char (&magic)[8], u
   bool intact = false;
   std::exception_ptr check_failure;
   tbb::parallel_invoke(
-      [&] { intact = XXH3_64bits(file.bytes + sizeof header, header.payload_size) == header.payload_checksum; },
+      [&] {
+        std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(), &XXH3_freeState);
+        XXH3_64bits_reset(state.get());
+        // In file order: the table, then each section's padding and bytes, each piece of a
+        // section inspected as soon as it is hashed.
+        uint64_t position = sizeof header;
+        for (const format::SectionEntry& section : sections) {
+          XXH3_64bits_update(state.get(), file.bytes + position, section.offset - position);
+          const char* bytes = file.bytes + section.offset;
+          constexpr uint64_t kPiece = uint64_t{256} << 10;
+          for (uint64_t begin = 0; begin < section.size; begin += kPiece) {
+            const uint64_t end = std::min(section.size, begin + kPiece);
+            XXH3_64bits_update(state.get(), bytes + begin, end - begin);
+            if (inspect_piece) inspect_piece(section, bytes, begin, end);
+          }
+          position = section.offset + section.size;
+        }
+        XXH3_64bits_update(state.get(), file.bytes + position, file_size - position);
+        intact = XXH3_64bits_digest(state.get()) == header.payload_checksum;
+      },
       [&] {
         if (!check_alongside) return;
         try {

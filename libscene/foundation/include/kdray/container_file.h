@@ -1,7 +1,7 @@
 // Reading and writing the section container shared by .kdscene and .kdtree
-// (formats/container.md). The writer is atomic (temporary file + rename); the reader
-// checks magic, version, header and section sizes against the file size, and the payload
-// checksum before the caller interprets a single byte.
+// (formats/container.md). The writer is atomic (temporary file + rename); the reader maps the
+// file and checks magic, version, header and section sizes against the file size, and the
+// payload checksum before the caller uses a single byte.
 #pragma once
 
 #include <kdray/util.h>
@@ -35,30 +35,17 @@ struct ContainerHeaderInfo {
 void write_container(const std::string& path, const ContainerHeaderInfo& header,
                      const std::vector<SectionData>& sections);
 
-// Called once per section, in file order, with its id and size; returns where the
-// section's bytes go (at least `size` bytes), or nullptr to skip an unknown section.
-// May throw kdray::Error when the size is impossible for that section.
-using SectionSink = std::function<void*(uint32_t id, uint64_t size)>;
-
+// The header and section table of a container, checked against the file size.
 struct ContainerContents {
   format::FileHeader header;
   std::vector<format::SectionEntry> sections;
 };
 
-// Reads a container, streaming each section straight into the memory the sink returns.
-// Throws kdray::Error naming `path` for a missing file, wrong magic ("not a <what> file"),
-// a newer version, truncation, sizes beyond the file, overlapping sections or a checksum
-// mismatch. Data written through the sink must not be trusted unless this returns.
-// `kind_name` is used in messages, e.g. "kdscene".
-ContainerContents read_container(const std::string& path, const char (&magic)[8],
-                                 uint32_t max_version, const char* kind_name,
-                                 const SectionSink& sink);
-
-// A container's bytes mapped read-only, checked as read_container checks them (the checksum
-// included): section s's bytes are at bytes + s.offset. The mapping lives while any copy of
-// `mapping` does, so arrays that view it can share it. The file's pages are the page cache's:
-// nothing is copied or zero-filled, which is what makes a load cost about a read of the file.
-// A file must not be truncated while mapped (writers replace files by rename, which does not).
+// A container's bytes mapped read-only and checked (magic, version, sizes, the checksum):
+// section s's bytes are at bytes + s.offset. The mapping lives while any copy of `mapping`
+// does, so arrays that view it can share it. The file's pages are the page cache's: nothing is
+// copied or zero-filled, which is what makes a load cost about a read of the file. A file must
+// not be truncated while mapped (writers replace files by rename, which does not).
 struct MappedContainer {
   std::shared_ptr<const void> mapping;
   const char* bytes = nullptr;
@@ -67,10 +54,18 @@ struct MappedContainer {
 // `check_alongside` (optional) runs on the mapped container while the checksum is computed on
 // another thread, so a reader's own pass over the sections costs no extra time: it may read any
 // byte inside a section and must not act on one, since nothing is trusted until this returns.
-// A checksum mismatch is the error thrown, whatever the check found; else the check's error.
+// `inspect_piece` (optional) is called on the checksum's thread for each piece of a section
+// right after the piece is hashed, while it is in cache, with the section, its bytes and the
+// piece's byte range in them ([begin, end), both multiples of 16 unless end is the section's
+// end): a check that reads every byte of a large section costs no second pass over
+// memory that way; it records what it finds and does not throw. A checksum mismatch is the error
+// thrown, whatever the checks found; else check_alongside's error.
+using PieceInspector =
+    std::function<void(const format::SectionEntry& section, const char* bytes, uint64_t begin, uint64_t end)>;
 MappedContainer map_container(const std::string& path, const char (&magic)[8], uint32_t max_version,
                               const char* kind_name,
-                              const std::function<void(const MappedContainer&)>& check_alongside = {});
+                              const std::function<void(const MappedContainer&)>& check_alongside = {},
+                              const PieceInspector& inspect_piece = {});
 
 // Reads only the header and section table (validated against the file size, no checksum):
 // cheap identification for kdinfo and for stale-tree checks before a full load.

@@ -160,6 +160,34 @@ TEST_F(KdTreeFile, InvalidStructureIsRejected) {
   expect_rejected(tree, "no nodes", "no nodes");
 }
 
+// The leaf triangles' indices are checked as the checksum reads the file, in pieces: an index out
+// of range is found in every record, the first, one on either side of a piece's end and the
+// last, in a tree whose leaf triangles span many pieces.
+TEST_F(KdTreeFile, EveryLeafTriangleIndexIsChecked) {
+  const Scene scene = test::icosphere_scene(5, {0, 0, 0}, 1);
+  const KdTree intact = build_kdtree(scene, BuildSettings{});
+  const size_t records = intact.leaf_triangles.size();
+  const size_t per_piece = (size_t{256} << 10) / sizeof(KdLeafTriangle);
+  ASSERT_GT(records, 4 * per_piece) << "the leaf triangles should span several pieces";
+  for (const size_t damaged : {size_t{0}, per_piece - 1, per_piece, per_piece + 1, records - 1}) {
+    KdTree tree = intact;
+    tree.leaf_triangles.own()[damaged].triangle = static_cast<uint32_t>(scene.triangle_count());
+    write_tree(path("bad.kdtree"), tree);
+    EXPECT_NE(read_error(path("bad.kdtree")).find("triangle index"), std::string::npos) << "record " << damaged;
+  }
+}
+
+// A file damaged in its structure and in its bytes: the checksum is what the reader reports.
+TEST_F(KdTreeFile, AChecksumMismatchIsReportedBeforeWhatTheChecksBesideItFound) {
+  KdTree tree = tree_;
+  tree.nodes.own()[0].header = static_cast<uint32_t>(tree.nodes.size() + 5) << 2 | kd_node_axis(tree.nodes[0]);
+  write_tree(path("a.kdtree"), tree);
+  std::vector<char> bytes = bytes_of(path("a.kdtree"));
+  bytes[bytes.size() - 5] ^= 0x10;
+  write_bytes(path("a.kdtree"), bytes);
+  EXPECT_NE(read_error(path("a.kdtree")).find("checksum"), std::string::npos) << read_error(path("a.kdtree"));
+}
+
 // A complete tree of 2^20 empty leaves (about two million nodes): large enough that a reader
 // checks its subtrees in parallel pieces. Damage deep in either half must still be found.
 KdTree complete_tree(uint32_t levels) {

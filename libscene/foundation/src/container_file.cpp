@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -18,6 +19,7 @@
 
 #include <fcntl.h>
 #include <sys/mman.h>
+#include <sys/uio.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -28,16 +30,22 @@ uint64_t align_up(uint64_t value, uint64_t alignment) {
   return (value + alignment - 1) / alignment * alignment;
 }
 
-void write_all(int fd, const void* data, uint64_t size, const std::string& path) {
-  const char* bytes = static_cast<const char*>(data);
-  while (size > 0) {
-    ssize_t written = ::write(fd, bytes, std::min<uint64_t>(size, 1u << 30));
+// Writes the pieces in order, however many calls that takes.
+void write_all(int fd, std::vector<iovec>& pieces, const std::string& path) {
+  size_t first = 0;
+  while (first < pieces.size()) {
+    const int count = static_cast<int>(std::min<size_t>(pieces.size() - first, IOV_MAX));
+    ssize_t written = ::writev(fd, pieces.data() + first, count);
     if (written < 0) {
       if (errno == EINTR) continue;
       throw Error(path, std::string("cannot write: ") + std::strerror(errno));
     }
-    bytes += written;
-    size -= static_cast<uint64_t>(written);
+    for (; first < pieces.size() && static_cast<size_t>(written) >= pieces[first].iov_len; ++first)
+      written -= static_cast<ssize_t>(pieces[first].iov_len);
+    if (first < pieces.size()) {
+      pieces[first].iov_base = static_cast<char*>(pieces[first].iov_base) + written;
+      pieces[first].iov_len -= static_cast<size_t>(written);
+    }
   }
 }
 
@@ -136,23 +144,33 @@ void write_container(const std::string& path, const ContainerHeaderInfo& info,
 
   // The checksum covers everything after the header, padding included, in file order. It is
   // computed as the payload is written, each piece while it is still in cache, and the header
-  // that records it is written last, over a placeholder.
+  // that records it is written last, over a placeholder. Writes cover whole 2 MiB pieces of the
+  // file at 2 MiB offsets: the page cache then holds the file in 2 MiB folios where the file
+  // system allows, and a reader that maps the file gets huge-page mappings of it (random rays
+  // through a mapped tree ran 10% slower on 4 KiB pages).
   static const char kZeros[format::kSectionAlignment] = {};
   AtomicFile output(path);
   FileDescriptor file(::open(output.temporary_path().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
   if (file.get() < 0) throw Error(path, std::string("cannot create: ") + std::strerror(errno));
   std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(), &XXH3_freeState);
   XXH3_64bits_reset(state.get());
+  constexpr uint64_t kPiece = uint64_t{2} << 20;
+  std::vector<iovec> piece;
   uint64_t position = 0;
   auto put = [&](const void* data, uint64_t size, bool hashed) {
-    constexpr uint64_t kPiece = uint64_t{1} << 20;
     const char* bytes = static_cast<const char*>(data);
-    for (uint64_t done = 0; done < size; done += kPiece) {
-      const uint64_t piece = std::min(kPiece, size - done);
-      if (hashed) XXH3_64bits_update(state.get(), bytes + done, piece);
-      write_all(file.get(), bytes + done, piece, path);
+    while (size > 0) {
+      const uint64_t part = std::min(size, kPiece - position % kPiece);
+      if (hashed) XXH3_64bits_update(state.get(), bytes, part);
+      piece.push_back({const_cast<char*>(bytes), part});
+      bytes += part;
+      size -= part;
+      position += part;
+      if (position % kPiece == 0) {
+        write_all(file.get(), piece, path);
+        piece.clear();
+      }
     }
-    position += size;
   };
   put(&header, sizeof header, false);
   put(table.data(), table.size() * sizeof(format::SectionEntry), true);
@@ -160,6 +178,7 @@ void write_container(const std::string& path, const ContainerHeaderInfo& info,
     put(kZeros, table[i].offset - position, true);
     put(sections[i].data, sections[i].size, true);
   }
+  write_all(file.get(), piece, path);
   header.payload_checksum = XXH3_64bits_digest(state.get());
   if (::pwrite(file.get(), &header, sizeof header, 0) != static_cast<ssize_t>(sizeof header))
     throw Error(path, std::string("cannot write: ") + std::strerror(errno));

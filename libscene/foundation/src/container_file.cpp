@@ -209,7 +209,8 @@ MappedContainer map_container(const std::string& path, const char (&magic)[8], u
   file.contents = std::move(opened.contents);
   // The table was read before the mapping: the same bytes, or the file changed in between.
   const auto& sections = file.contents.sections;
-  if (std::memcmp(file.bytes + sizeof header, sections.data(), sections.size() * sizeof(format::SectionEntry)) != 0)
+  if (!sections.empty() &&
+      std::memcmp(file.bytes + sizeof header, sections.data(), sections.size() * sizeof(format::SectionEntry)) != 0)
     throw Error(path, "the file changed while it was read");
   bool intact = false;
   std::exception_ptr check_failure;

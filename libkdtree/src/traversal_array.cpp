@@ -1,6 +1,5 @@
+#include <kdray/huge_pages.h>
 #include <kdray/traversal_array.h>
-
-#include <sys/mman.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -8,14 +7,13 @@
 namespace kdray::detail {
 
 void* allocate_traversal_memory(size_t bytes) {
-  constexpr size_t kHugePage = size_t{2} << 20;
   // Arrays under one huge page gain nothing; they keep the ordinary alignment.
   bytes = std::max<size_t>(bytes, 1);
-  const size_t alignment = bytes >= kHugePage ? kHugePage : alignof(std::max_align_t);
+  const size_t alignment = bytes >= kHugePageBytes ? kHugePageBytes : alignof(std::max_align_t);
   const size_t rounded = (bytes + alignment - 1) / alignment * alignment;
   void* memory = std::aligned_alloc(alignment, rounded);
   if (!memory) throw std::bad_alloc();
-  if (alignment == kHugePage) madvise(memory, rounded, MADV_HUGEPAGE);
+  if (alignment == kHugePageBytes) advise_huge_pages(memory, rounded);
   return memory;
 }
 

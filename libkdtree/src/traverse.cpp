@@ -78,23 +78,6 @@ std::vector<uint32_t> empty_leaf_bits(const KdTree& tree) {
   return bits;
 }
 
-TraversalArray<float> gather_triangle_vertices(const Scene& scene) {
-  TraversalArray<float> vertices(scene.triangle_count() * KD_TRIANGLE_FLOATS);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, scene.triangle_count(), 16384),
-                    [&](const tbb::blocked_range<size_t>& triangles) {
-                      for (size_t triangle = triangles.begin(); triangle < triangles.end(); ++triangle) {
-                        float* corners = vertices.data() + triangle * KD_TRIANGLE_FLOATS;
-                        for (size_t corner = 0; corner < 3; ++corner) {
-                          const Vec3& p = scene.positions[scene.indices[3 * triangle + corner]];
-                          corners[3 * corner + 0] = p.x;
-                          corners[3 * corner + 1] = p.y;
-                          corners[3 * corner + 2] = p.z;
-                        }
-                      }
-                    });
-  return vertices;
-}
-
 PreparedTraversal::PreparedTraversal(const KdTree& tree) : tree_(tree), empty_leaves_(empty_leaf_bits(tree)) {}
 
 detail::TraversalArrays PreparedTraversal::arrays() const {

@@ -2,6 +2,7 @@
 
 #include <kdray/container_file.h>
 #include <kdray/error.h>
+#include <kdray/huge_pages.h>
 #include <kdray/tangents.h>
 
 #include "scene_encoding.h"
@@ -9,10 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <optional>
-
-#include <sys/mman.h>
 
 namespace kdray {
 namespace {
@@ -154,19 +152,10 @@ class SectionCollector {
                              std::to_string(unit));
     const T* first = reinterpret_cast<const T*>(bytes);
     const size_t count = size / sizeof(T);
+    // A million-triangle scene's arrays are thousands of 4 KiB pages, each a fault when filled.
     array.reserve(count);
     advise_huge_pages(array.data(), count * sizeof(T));
     array.assign(first, first + count);
-  }
-
-  // Fresh memory is mapped a page at a time on first touch, and a million-triangle scene's arrays
-  // are thousands of 4 KiB pages: in 2 MiB pages they are a few faults. Advice only, for the
-  // whole huge pages inside [data, data + bytes); where the kernel gives none it keeps 4 KiB.
-  static void advise_huge_pages(void* data, size_t bytes) {
-    constexpr uintptr_t kHugePage = uintptr_t{2} << 20;
-    const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + kHugePage - 1) & ~(kHugePage - 1);
-    const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(kHugePage - 1);
-    if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
   }
 
   std::string path_;

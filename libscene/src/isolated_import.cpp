@@ -9,6 +9,7 @@
 #include <kdray/scene_file.h>
 
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -17,6 +18,7 @@
 #include <random>
 
 #include <fcntl.h>
+#include <poll.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -65,13 +67,30 @@ void limit(int resource, uint64_t soft, uint64_t hard) {
   ::setrlimit(resource, &value);
 }
 
-std::string read_until_closed(int fd) {
+// What the child writes until it closes the pipe (it exits), or until `seconds` of wall time have
+// passed (then `finished` is false). A child the CPU limit cannot stop because it is blocked,
+// not working (a fork of a process whose other threads held a lock, as a sanitizer's allocator
+// can be), would otherwise keep the tool waiting for ever.
+std::string read_until_closed(int fd, uint64_t seconds, bool& finished) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point deadline = Clock::now() + std::chrono::seconds(seconds);
   std::string text;
   char buffer[4096];
   for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+    struct pollfd wait_for {fd, POLLIN, 0};
+    const int ready = left > 0 ? ::poll(&wait_for, 1, static_cast<int>(left)) : 0;
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready == 0) {
+      finished = false;
+      return text;
+    }
     const ssize_t got = ::read(fd, buffer, sizeof buffer);
     if (got < 0 && errno == EINTR) continue;
-    if (got <= 0) return text;
+    if (got <= 0) {
+      finished = true;
+      return text;
+    }
     text.append(buffer, size_t(got));
   }
 }
@@ -125,8 +144,13 @@ Scene import_in_child_process(const std::string& path, Scene (*importer)(const s
     ::_exit(status);  // no atexit handlers or static destructors: they belong to the parent
   }
   ::close(message_pipe[1]);
-  const std::string message = read_until_closed(message_pipe[0]);
+  // Wall time: three times the CPU allowance, so a machine whose cores are all busy still gives
+  // a working importer its CPU time.
+  const uint64_t wall_seconds = 3 * cpu_seconds;
+  bool finished = true;
+  const std::string message = read_until_closed(message_pipe[0], wall_seconds, finished);
   ::close(message_pipe[0]);
+  if (!finished) ::kill(child, SIGKILL);
   int status = 0;
   struct rusage usage {};
   while (::wait4(child, &status, 0, &usage) < 0 && errno == EINTR) {
@@ -143,6 +167,9 @@ Scene import_in_child_process(const std::string& path, Scene (*importer)(const s
   if (WIFEXITED(status) && WEXITSTATUS(status) == kExitOverMemoryBudget && !message.empty())
     throw MemoryBudgetError("", message);
   if (WIFEXITED(status) && !message.empty()) throw Error("", message);
+  if (!finished)
+    throw Error(path, std::string(importer_name) + " did not finish within " + std::to_string(wall_seconds) +
+                          " s; its process was stopped (the file is probably malformed)");
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);
     if (signal == SIGXCPU || (signal == SIGKILL && cpu_used >= cpu_seconds))

@@ -230,15 +230,21 @@ RootWork prepare_root(const Scene& scene) {
   return root;
 }
 
-KdTree finish_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel, Subtree&& built) {
+KdTree describe_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel,
+                     TraversalArray<KdNode>&& nodes) {
   KdTree tree;
-  tree.nodes = std::move(built.nodes);
-  tree.leaf_triangles = leaf_triangles_of(scene, built.leaf_triangles.data(), built.leaf_triangles.size());
+  tree.nodes = std::move(nodes);
   tree.bounds = Bounds{{voxel.min[0], voxel.min[1], voxel.min[2]}, {voxel.max[0], voxel.max[1], voxel.max[2]}};
   tree.settings = settings;
   tree.geometry_hash = compute_geometry_hash(scene);
   tree.key = tree_key(tree.geometry_hash, settings);
   tree.stats = compute_tree_stats(tree, scene.triangle_count());
+  return tree;
+}
+
+KdTree finish_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel, Subtree&& built) {
+  KdTree tree = describe_tree(scene, settings, voxel, std::move(built.nodes));
+  tree.leaf_triangles = leaf_triangles_of(scene, built.leaf_triangles.data(), built.leaf_triangles.size());
   return tree;
 }
 

@@ -313,7 +313,12 @@ struct RootWork {
 };
 RootWork prepare_root(const Scene& scene);
 
-// Wraps a finished subtree into a KdTree with settings, scene hash and statistics.
+// The tree of the finished `nodes` with its bounds, settings, scene hash and statistics; its
+// leaf-triangle array is left empty.
+KdTree describe_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel,
+                     TraversalArray<KdNode>&& nodes);
+
+// Wraps a finished subtree into a KdTree: describe_tree, with the leaf triangles attached.
 KdTree finish_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel, Subtree&& built);
 
 }  // namespace kdray::detail

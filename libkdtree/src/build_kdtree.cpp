@@ -1,12 +1,14 @@
 // build_kdtree: the root's triangles and bounds, then the binned top (build_binned.h) down to
 // nodes of settings.binned_above triangles and the exact event sweep (build_events.h) below,
 // or the exact sweep from the root when binned_above is 0; then the pieces built in parallel
-// are joined and the statistics computed.
+// are joined and the statistics computed, and the leaf triangles made in memory (build_kdtree)
+// or as the file is written (build_tree_file).
 #include <kdray/kdtree.h>
 #include <kdray/threads.h>
 
 #include "build_binned.h"
 #include "build_events.h"
+#include "tree_writing.h"
 
 #include <algorithm>
 #include <chrono>
@@ -24,41 +26,88 @@ BuildSettings BuildSettings::resolved(uint64_t triangles) const {
   return explicit_settings;
 }
 
-KdTree build_kdtree(const Scene& scene, const BuildSettings& given, const BuildControl& control) {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_between(Clock::time_point start, Clock::time_point end) {
+  return std::chrono::duration<double>(end - start).count();
+}
+
+// The subtree of the whole scene as the builder leaves it, with the root voxel and the
+// resolved settings; the phases up to `assemble` timed.
+struct Built {
+  detail::Subtree subtree;
+  detail::Box3 voxel;
+  BuildSettings settings;
+};
+
+Built build(const Scene& scene, const BuildSettings& given, const BuildControl& control, BuildTimings& timings) {
   detail::validate_settings(given);
-  const BuildSettings settings = given.resolved(scene.triangle_count());
-  BuildTimings timings;
-  auto lap = [last = std::chrono::steady_clock::now()](double& phase) mutable {
-    const auto now = std::chrono::steady_clock::now();
-    phase = std::chrono::duration<double>(now - last).count();
+  Built result{{}, {}, given.resolved(scene.triangle_count())};
+  const BuildSettings& settings = result.settings;
+  auto lap = [last = Clock::now()](double& phase) mutable {
+    const auto now = Clock::now();
+    phase = seconds_between(last, now);
     last = now;
   };
-  KdTree tree;
   run_with_threads(control.threads, [&] {
     detail::RootWork root = detail::prepare_root(scene);
     lap(timings.prepare);
-    const detail::Box3 voxel = root.voxel;
-    detail::BuildContext context(scene, settings, control, voxel, root.triangles.size());
+    result.voxel = root.voxel;
+    detail::BuildContext context(scene, settings, control, result.voxel, root.triangles.size());
     detail::Piece root_piece;
     if (detail::binned(settings, root.triangles.size())) {
-      detail::BinnedNode node{voxel, 0, std::move(root.triangles), std::move(root.bounds)};
+      detail::BinnedNode node{result.voxel, 0, std::move(root.triangles), std::move(root.bounds)};
       lap(timings.events);
       detail::build_binned_subtree(context, node, root_piece);
     } else {
-      detail::NodeWork work = detail::node_with_events(voxel, 0, std::move(root.triangles), std::move(root.bounds),
-                                                       settings.perfect_splits);
+      detail::NodeWork work = detail::node_with_events(result.voxel, 0, std::move(root.triangles),
+                                                       std::move(root.bounds), settings.perfect_splits);
       lap(timings.events);
       detail::build_exact_subtree(context, work, root_piece);
     }
     lap(timings.subdivide);
-    detail::Subtree built = detail::flatten(std::move(root_piece));
+    result.subtree = detail::flatten(std::move(root_piece));
     lap(timings.assemble);
-    if (control.progress) control.progress(1.0);
-    tree = detail::finish_tree(scene, settings, voxel, std::move(built));
-    lap(timings.statistics);
   });
+  if (control.progress) control.progress(1.0);
+  return result;
+}
+
+}  // namespace
+
+KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const BuildControl& control) {
+  BuildTimings timings;
+  Built built = build(scene, settings, control, timings);
+  const auto start = Clock::now();
+  KdTree tree;
+  run_with_threads(control.threads, [&] {
+    tree = detail::finish_tree(scene, built.settings, built.voxel, std::move(built.subtree));
+  });
+  timings.statistics = seconds_between(start, Clock::now());
   if (control.timings) *control.timings = timings;
   return tree;
+}
+
+TreeSummary build_tree_file(const Scene& scene, const std::string& path, const BuildSettings& settings,
+                            const BuildControl& control) {
+  BuildTimings timings;
+  Built built = build(scene, settings, control, timings);
+  const auto start = Clock::now();
+  TreeSummary summary;
+  run_with_threads(control.threads, [&] {
+    const KdTree described =
+        detail::describe_tree(scene, built.settings, built.voxel, std::move(built.subtree.nodes));
+    const auto described_at = Clock::now();
+    timings.statistics = seconds_between(start, described_at);
+    const TraversalArray<uint32_t>& triangles = built.subtree.leaf_triangles;
+    detail::write_tree_of_scene_triangles(path, described, scene, triangles.data(), triangles.size());
+    timings.write = seconds_between(described_at, Clock::now());
+    summary = described;
+  });
+  if (control.timings) *control.timings = timings;
+  return summary;
 }
 
 }  // namespace kdray

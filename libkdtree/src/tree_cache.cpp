@@ -133,13 +133,17 @@ std::optional<KdTree> TreeCache::copy_out(uint64_t key, const std::string& outpu
   return tree;
 }
 
-std::string TreeCache::store(const KdTree& tree, const std::string& scene_path) {
-  const std::string path = tree_path(tree.key);
-  AtomicFile entry(path);
-  write_tree(entry.temporary_path(), tree);
+KdTree TreeCache::build(uint64_t key, const Scene& scene, const std::string& scene_path,
+                        const BuildSettings& settings, const BuildControl& control) {
+  AtomicFile entry(tree_path(key));
+  const TreeSummary built = build_tree_file(scene, entry.temporary_path(), settings, control);
+  if (built.key != key)
+    throw Error(scene_path, "the geometry hash the scene records (" + hash_hex(scene.geometry_hash) +
+                                ") is not the hash of its triangles (" + hash_hex(built.geometry_hash) + ")");
+  KdTree tree = read_tree(entry.temporary_path());  // still there after the rename, or a winner's copy
   entry.commit_unless_exists();
-  mark_used(tree.key, scene_path);
-  return path;
+  mark_used(key, scene_path);
+  return tree;
 }
 
 void TreeCache::mark_used(uint64_t key, const std::string& scene_path) {
@@ -207,14 +211,10 @@ CachedTree cached_tree(TreeCache& cache, const Scene& scene, const std::string& 
   std::optional<KdTree> found = output.empty() ? cache.load(key, scene_path) : cache.copy_out(key, output, scene_path);
   if (found) return {std::move(*found), true, cache.tree_path(key)};
 
-  KdTree tree = build_kdtree(scene, settings, control);
-  if (tree.key != key)
-    throw Error(scene_path, "the geometry hash the scene records (" + hash_hex(scene.geometry_hash) +
-                                ") is not the hash of its triangles (" + hash_hex(tree.geometry_hash) + ")");
-  std::string entry = cache.store(tree, scene_path);
+  KdTree tree = cache.build(key, scene, scene_path, settings, control);
   // Copied from the entry, so that the output shares its blocks where the file system can.
   if (!output.empty() && !cache.copy_out(key, output, scene_path)) write_tree(output, tree);
-  return {std::move(tree), false, std::move(entry)};
+  return {std::move(tree), false, cache.tree_path(key)};
 }
 
 SceneAndTree read_scene_and_tree(const std::string& scene_path, const std::string& tree_path,

@@ -3,6 +3,9 @@
 #include <kdray/error.h>
 #include <kdray/kdtree.h>
 
+#include "tree_writing.h"
+#include "triangle_corners.h"
+
 #include <kernels/kd_traverse.h>
 
 #include <cereal/archives/portable_binary.hpp>
@@ -168,9 +171,8 @@ uint64_t key_of(uint64_t geometry_hash, const std::string& encoded_settings) {
   return XXH3_64bits_digest(state.get());
 }
 
-}  // namespace
-
-void write_tree(const std::string& path, const KdTree& tree) {
+// Writes `tree` with `leaf_triangles` as its leaf-triangle section.
+void write_tree_sections(const std::string& path, const KdTree& tree, SectionData leaf_triangles) {
   const std::string parameters = encode_settings(tree.settings);
   const std::string statistics = to_portable_binary(tree.stats);
   const float bounds[6] = {tree.bounds.min.x, tree.bounds.min.y, tree.bounds.min.z,
@@ -182,10 +184,27 @@ void write_tree(const std::string& path, const KdTree& tree) {
       {format::kTreeStatistics, statistics.data(), statistics.size()},
       {format::kTreeBounds, bounds, sizeof bounds},
       {format::kTreeKey, &key, sizeof key},
-      {format::kTreeLeafTriangles, tree.leaf_triangles.data(), tree.leaf_triangles.size() * sizeof(KdLeafTriangle)},
+      std::move(leaf_triangles),
   };
   write_container(path, ContainerHeaderInfo{format::kTreeMagic, format::kTreeVersion, 0, tree.geometry_hash},
                   sections);
+}
+
+}  // namespace
+
+void write_tree(const std::string& path, const KdTree& tree) {
+  write_tree_sections(path, tree,
+                      {format::kTreeLeafTriangles, tree.leaf_triangles.data(),
+                       tree.leaf_triangles.size() * sizeof(KdLeafTriangle)});
+}
+
+void detail::write_tree_of_scene_triangles(const std::string& path, const KdTree& tree, const Scene& scene,
+                                           const uint32_t* triangles, uint64_t count) {
+  write_tree_sections(path, tree,
+                      {format::kTreeLeafTriangles, nullptr, count * sizeof(KdLeafTriangle),
+                       [&](uint64_t begin, uint64_t end, char* out) {
+                         detail::leaf_triangle_bytes(scene, triangles, begin, end, out);
+                       }});
 }
 
 uint64_t tree_key(uint64_t geometry_hash, const BuildSettings& settings) {

@@ -24,7 +24,7 @@ struct Pending {
 };
 
 struct Totals {
-  uint64_t inner_nodes = 0, leaves = 0, empty_leaves = 0, depth_sum = 0;
+  uint64_t inner_nodes = 0, leaves = 0, empty_leaves = 0, references = 0, depth_sum = 0;
   uint32_t max_depth = 0;
   double sah_cost = 0;
 
@@ -32,6 +32,7 @@ struct Totals {
     inner_nodes += other.inner_nodes;
     leaves += other.leaves;
     empty_leaves += other.empty_leaves;
+    references += other.references;
     depth_sum += other.depth_sum;
     max_depth = std::max(max_depth, other.max_depth);
     sah_cost += other.sah_cost;
@@ -56,6 +57,7 @@ class Walk {
       ++totals.leaves;
       const uint32_t count = kd_leaf_count(node);
       totals.empty_leaves += count == 0;
+      totals.references += count;
       totals.depth_sum += item.depth;
       totals.max_depth = std::max(totals.max_depth, item.depth);
       totals.sah_cost += item.weight * cost_.leaf_cost(count) * relative_area(item.voxel);
@@ -108,7 +110,6 @@ class Walk {
 TreeStats compute_tree_stats(const KdTree& tree, uint64_t scene_triangles) {
   TreeStats stats;
   stats.triangles = scene_triangles;
-  stats.leaf_references = tree.leaf_triangles.size();
   if (tree.nodes.empty()) return stats;
   const Walk walk(tree);
   // The top levels, level by level, leave the subtrees below them in depth-first order.
@@ -131,6 +132,7 @@ TreeStats compute_tree_stats(const KdTree& tree, uint64_t scene_triangles) {
   stats.inner_nodes = totals.inner_nodes;
   stats.leaves = totals.leaves;
   stats.empty_leaves = totals.empty_leaves;
+  stats.leaf_references = totals.references;  // the leaves' ranges cover the array once
   stats.max_depth = totals.max_depth;
   stats.sah_cost = totals.sah_cost;
   const uint64_t non_empty_leaves = stats.leaves - stats.empty_leaves;

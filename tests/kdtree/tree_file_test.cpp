@@ -1,5 +1,6 @@
 // The .kdtree file: round trip, damage, structural validation and stale trees.
 #include "test_scenes.h"
+#include "triangle_corners.h"
 
 #include <kdray/container_file.h>
 #include <kdray/kdtree.h>
@@ -12,6 +13,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <utility>
+#include <vector>
 
 namespace kdray {
 namespace {
@@ -65,6 +68,40 @@ TEST_F(KdTreeFile, RoundTripKeepsEverything) {
   EXPECT_EQ(back.stats.leaves, tree.stats.leaves);
   EXPECT_EQ(back.bounds.max.y, tree.bounds.max.y);
   EXPECT_NO_THROW(check_tree_matches_scene(back, "a.kdtree", scene_, "s.kdscene"));
+}
+
+// build_tree_file makes the leaf triangles' records as it writes them, a 2 MiB piece of the file
+// at a time, records cut at the pieces' edges: the file must be the one write_tree writes.
+TEST_F(KdTreeFile, BuiltStraightIntoItsFileIsTheFileWriteTreeWrites) {
+  const Scene scene = test::icosphere_scene(6, {0, 0, 0}, 1);  // 81,920 triangles
+  BuildTimings timings;
+  const TreeSummary built =
+      build_tree_file(scene, path("straight.kdtree"), BuildSettings{}, BuildControl{2, {}, &timings});
+  const KdTree in_memory = build_kdtree(scene, BuildSettings{});
+  write_tree(path("written.kdtree"), in_memory);
+  ASSERT_GT(in_memory.leaf_triangles.size() * sizeof(KdLeafTriangle), uint64_t{3} << 21) << "several pieces";
+  EXPECT_TRUE(bytes_of(path("straight.kdtree")) == bytes_of(path("written.kdtree")));
+  EXPECT_EQ(built.key, in_memory.key);
+  EXPECT_EQ(built.stats.leaf_references, in_memory.leaf_triangles.size());
+  EXPECT_EQ(built.stats.sah_cost, in_memory.stats.sah_cost);
+  EXPECT_GT(timings.write, 0.0);
+}
+
+// The records' bytes in any range, as a writer asks for them: inside one record, across the
+// boundary of two, and whole records with parts at either end.
+TEST_F(KdTreeFile, LeafTriangleBytesOfAnyRangeAreThoseOfTheWholeArray) {
+  std::vector<uint32_t> triangles;
+  for (uint32_t t = 0; t < scene_.triangle_count(); ++t) triangles.push_back(t);
+  const TraversalArray<KdLeafTriangle> whole = leaf_triangles_of(scene_, triangles.data(), triangles.size());
+  const char* bytes = reinterpret_cast<const char*>(whole.data());
+  const uint64_t size = whole.size() * sizeof(KdLeafTriangle);
+  for (const auto& [begin, end] : std::vector<std::pair<uint64_t, uint64_t>>{
+           {0, size}, {0, 1}, {3, 17}, {36, 44}, {30, 50}, {40, 80}, {13, size - 7}, {size - 1, size}, {77, 77}}) {
+    std::vector<char> made(end - begin + 1, 'x');
+    detail::leaf_triangle_bytes(scene_, triangles.data(), begin, end, made.data());
+    EXPECT_EQ(0, std::memcmp(made.data(), bytes + begin, end - begin)) << begin << ".." << end;
+    EXPECT_EQ(made.back(), 'x') << begin << ".." << end << ": nothing written past the range";
+  }
 }
 
 TEST_F(KdTreeFile, BinningIsRecordedAndAnExactTreeKeepsItsKey) {

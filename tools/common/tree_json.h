@@ -8,7 +8,7 @@
 
 namespace kdray::tool {
 
-inline nlohmann::json tree_stats_json(const KdTree& tree) {
+inline nlohmann::json tree_stats_json(const TreeSummary& tree) {
   const BuildSettings& settings = tree.settings;
   const TreeStats& stats = tree.stats;
   return {
@@ -23,7 +23,7 @@ inline nlohmann::json tree_stats_json(const KdTree& tree) {
         {"bins", settings.bins}}},
       {"triangles", stats.triangles},
       {"sah_cost", stats.sah_cost},
-      {"nodes", tree.nodes.size()},
+      {"nodes", stats.inner_nodes + stats.leaves},
       {"inner_nodes", stats.inner_nodes},
       {"leaves", stats.leaves},
       {"empty_leaves", stats.empty_leaves},

@@ -82,7 +82,7 @@ std::string report_text(const Report& r) {
   }
   text += format("  peak memory              %.1f MiB (scene, build and tree)\n", kdray::tool::peak_memory_mib());
   text += format("  tree size                %.1f MiB (%llu nodes)\n", static_cast<double>(bytes) / (1024.0 * 1024.0),
-                 static_cast<unsigned long long>(r.tree.nodes.size()));
+                 static_cast<unsigned long long>(r.tree.stats.inner_nodes + r.tree.stats.leaves));
   return text;
 }
 

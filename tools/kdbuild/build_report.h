@@ -13,7 +13,7 @@ namespace kdbuild {
 
 struct Report {
   std::string scene_path, tree_path;  // tree_path may be empty with a cache
-  kdray::KdTree tree;
+  kdray::TreeSummary tree;
   uint64_t scene_hash = 0;
   double load_seconds = 0, build_seconds = 0, build_cpu_seconds = 0, write_seconds = 0;
   kdray::BuildTimings phases;

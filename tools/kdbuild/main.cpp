@@ -92,11 +92,9 @@ int main(int argc, char** argv) {
     const auto build_start = kdray::Clock::now();
     const double cpu_start = kdray::tool::cpu_seconds();
     if (cache_folder.empty()) {
-      report.tree = kdray::build_kdtree(scene, settings, control);
-      report.build_seconds = kdray::seconds_since(build_start);
-      const auto write_start = kdray::Clock::now();
-      kdray::write_tree(tree_path, report.tree);
-      report.write_seconds = kdray::seconds_since(write_start);
+      report.tree = kdray::build_tree_file(scene, tree_path, settings, control);
+      report.write_seconds = report.phases.write;
+      report.build_seconds = kdray::seconds_since(build_start) - report.write_seconds;
     } else {
       kdray::TreeCache trees(cache_folder, [](const std::string& line) { kdray::tool::print_warning("kdbuild", line); });
       kdray::CachedTree cached = kdray::cached_tree(trees, scene, scene_path, settings, control, tree_path);

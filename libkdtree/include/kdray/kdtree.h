@@ -63,16 +63,20 @@ struct TreeStats {
   double sah_cost = 0;
 };
 
-struct KdTree {
-  TreeArray<KdNode> nodes;                  // root first; see kernels/kd_types.h
-  TreeArray<KdLeafTriangle> leaf_triangles;  // leaves are ranges of this array
-  Bounds bounds;                         // the root voxel
+// What a tree is apart from its two arrays.
+struct TreeSummary {
+  Bounds bounds;  // the root voxel
   BuildSettings settings;
   TreeStats stats;
   // What it was built from: the scene's geometry hash and, with the settings and the format
   // version, the tree's key (tree_key; the name of its tree cache entry).
   uint64_t geometry_hash = 0;
   uint64_t key = 0;
+};
+
+struct KdTree : TreeSummary {
+  TreeArray<KdNode> nodes;                  // root first; see kernels/kd_types.h
+  TreeArray<KdLeafTriangle> leaf_triangles;  // leaves are ranges of this array
 };
 
 // The key of the tree of a scene with this geometry hash built with these settings: XXH3-64 over
@@ -92,6 +96,7 @@ struct BuildTimings {
                         // of the exact subtrees below binned nodes)
   double assemble = 0;  // joining the subtrees built in parallel into one node array
   double statistics = 0;
+  double write = 0;  // build_tree_file: the file written, its leaf triangles made as it goes
 };
 
 struct BuildControl {
@@ -104,12 +109,18 @@ struct BuildControl {
 // with non-finite vertices are left out. Throws kdray::Error for settings out of range.
 KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const BuildControl& control = {});
 
+// The same tree written to `path` (atomically) as write_tree writes it, its leaf triangles made
+// from the scene as the file is written rather than held in memory beside it: a build's peak
+// memory is the builder's. read_tree(path) reads the tree. Throws kdray::Error.
+TreeSummary build_tree_file(const Scene& scene, const std::string& path, const BuildSettings& settings,
+                       const BuildControl& control = {});
+
 // The leaf-triangle entries of `count` scene triangles, in the order given: each one's corners,
 // copied from the scene's positions, and its index (KdLeafTriangle). The triangles must be
 // the scene's.
 TraversalArray<KdLeafTriangle> leaf_triangles_of(const Scene& scene, const uint32_t* triangles, size_t count);
 
-// Statistics of a tree (used by the builders and by read_tree's consistency check).
+// Statistics of a tree, from its nodes (its leaf-triangle array need not be there).
 TreeStats compute_tree_stats(const KdTree& tree, uint64_t scene_triangles);
 
 // Writes atomically. Throws kdray::Error.

@@ -49,9 +49,12 @@ class TreeCache {
   // verifies the copy's checksum; returns the tree, or nothing when there is no intact entry.
   std::optional<KdTree> copy_out(uint64_t key, const std::string& output, const std::string& scene_path);
 
-  // Stores a built tree under tree_key(tree) unless an entry is already there (a concurrent
-  // builder won; its tree has the same bytes). Returns the entry's tree path.
-  std::string store(const KdTree& tree, const std::string& scene_path);
+  // Builds the tree of `scene` for `settings` into the entry of `key` (build_tree_file) unless an
+  // entry is already there by then (a concurrent builder won; its tree has the same bytes), and
+  // returns it. Throws kdray::Error naming `scene_path` when the built tree's key is not `key`
+  // (the scene's recorded geometry hash is not that of its triangles); nothing is stored then.
+  KdTree build(uint64_t key, const Scene& scene, const std::string& scene_path, const BuildSettings& settings,
+               const BuildControl& control);
 
   // Every entry, most recently used first. Temporary files of writers at work are not entries.
   std::vector<CacheEntry> entries() const;

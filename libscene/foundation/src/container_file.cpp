@@ -172,11 +172,27 @@ void write_container(const std::string& path, const ContainerHeaderInfo& info,
       }
     }
   };
+  // A produced section's bytes are made into this buffer at their offset in the piece, which
+  // is written before the next piece is begun.
+  std::vector<char> made;
+  auto put_made = [&](const SectionData& section) {
+    if (made.empty()) made.resize(kPiece);
+    for (uint64_t begin = 0; begin < section.size;) {
+      const uint64_t part = std::min(section.size - begin, kPiece - position % kPiece);
+      char* out = made.data() + position % kPiece;
+      section.produce(begin, begin + part, out);
+      put(out, part, true);
+      begin += part;
+    }
+  };
   put(&header, sizeof header, false);
   put(table.data(), table.size() * sizeof(format::SectionEntry), true);
   for (size_t i = 0; i < sections.size(); ++i) {
     put(kZeros, table[i].offset - position, true);
-    put(sections[i].data, sections[i].size, true);
+    if (sections[i].produce)
+      put_made(sections[i]);
+    else
+      put(sections[i].data, sections[i].size, true);
   }
   write_all(file.get(), piece, path);
   header.payload_checksum = XXH3_64bits_digest(state.get());

@@ -17,10 +17,15 @@
 
 namespace kdray {
 
+// A section's `size` bytes: at `data`, or, where `produce` is set instead, made as the file is
+// written: produce(begin, end, out) writes the section's bytes [begin, end) to out, a piece of at
+// most 2 MiB at a time. A large section made from other data is then never held whole in memory
+// beside the file it goes to.
 struct SectionData {
   uint32_t id;
   const void* data;
   uint64_t size;
+  std::function<void(uint64_t begin, uint64_t end, char* out)> produce = {};
 };
 
 struct ContainerHeaderInfo {

@@ -3,9 +3,11 @@
 
 #include <kdray/device_build_options.h>
 #include <kdray/error.h>
+#include <kdray/huge_pages.h>
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 #include <vector>
 
@@ -169,7 +171,16 @@ Buffer Runtime::buffer(size_t bytes, const void* data, cl_mem_flags flags) {
   check(status, "clCreateBuffer");
   Buffer buffer(mem);
   if (data && bytes > 0) {
-    check(clEnqueueWriteBuffer(queue_, mem, CL_TRUE, 0, bytes, data, 0, nullptr, nullptr), "clEnqueueWriteBuffer");
+    // Filled through a mapping: on a CPU device that is the buffer's own memory, advised huge
+    // pages before its first write (the kernels read the tree's arrays at random, and with 4
+    // KiB pages nearly every such read of a large array also misses the TLB).
+    void* mapped = clEnqueueMapBuffer(queue_, mem, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, bytes, 0, nullptr,
+                                      nullptr, &status);
+    check(status, "clEnqueueMapBuffer");
+    advise_huge_pages(mapped, bytes);
+    std::memcpy(mapped, data, bytes);
+    check(clEnqueueUnmapMemObject(queue_, mem, mapped, 0, nullptr, nullptr), "clEnqueueUnmapMemObject");
+    check(clFinish(queue_), "clFinish");
   }
   return buffer;
 }

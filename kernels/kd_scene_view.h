@@ -12,8 +12,8 @@
 #define KD_SHORT_STACK_SIZE 8
 #endif
 
-/* Floats of one triangle's three corners (KdLeafTriangle.corners; the shading copy of the
- * corners, one per triangle in scene order, has the same layout). */
+/* Floats of one triangle's three corners (the shading copy of the corners, one triangle after
+ * another in scene order). */
 #define KD_TRIANGLE_FLOATS 9u
 
 /* Work counters of one traversal (kdtrace --json, bench/): compiled in only where
@@ -30,7 +30,7 @@ typedef struct KdTraversalCounters {
 
 typedef struct KdSceneView {
   KD_GLOBAL const KdNode* nodes;
-  KD_GLOBAL const KdLeafTriangle* leaf_triangles;
+  KD_GLOBAL const kd_u32* leaf_blocks; /* kd_types.h */
   float bounds_min[3], bounds_max[3];
 #ifdef KD_EMPTY_LEAF_BITS
   KD_GLOBAL const kd_u32* empty_leaves; /* bit n % 32 of word n / 32: node n is an empty leaf */
@@ -46,10 +46,10 @@ typedef struct KdSceneView {
  * arrays). empty_leaves is kept only where KD_EMPTY_LEAF_BITS is defined (pass 0 elsewhere);
  * counters start null: a counting build points them at its own totals. */
 KD_INLINE KdSceneView kd_scene_view(KD_GLOBAL const KdNode* nodes, KD_GLOBAL const kd_u32* empty_leaves,
-                                    KD_GLOBAL const KdLeafTriangle* leaf_triangles, float min_x, float min_y, float min_z, float max_x, float max_y, float max_z) {
+                                    KD_GLOBAL const kd_u32* leaf_blocks, float min_x, float min_y, float min_z, float max_x, float max_y, float max_z) {
   KdSceneView view;
   view.nodes = nodes;
-  view.leaf_triangles = leaf_triangles;
+  view.leaf_blocks = leaf_blocks;
   view.bounds_min[0] = min_x;
   view.bounds_min[1] = min_y;
   view.bounds_min[2] = min_z;
@@ -93,22 +93,27 @@ KD_INLINE int kd_hit_precedes(float t, kd_u32 triangle, const HitRecord* best) {
   return t < best->t || (t == best->t && triangle < best->triangle && best->triangle != KD_NO_HIT);
 }
 
-/* Tests the leaf's triangles against the ray and `hit`; returns 1 if hit changed. */
+/* Tests the leaf's triangles against the ray and `hit`; returns 1 if hit changed. The block's
+ * words are read as float where they are corners (the file's and the device buffer's bytes
+ * have no other type). */
 KD_HOT_INLINE int kd_intersect_leaf(const KdSceneView* scene, const KdRay* ray, KdNode leaf, HitRecord* hit,
                                     int any_hit) {
   int found = 0;
-  const kd_u32 first = kd_leaf_first(leaf);
   const kd_u32 count = kd_leaf_count(leaf);
+  KD_GLOBAL const kd_u32* block = scene->leaf_blocks + kd_leaf_first(leaf);
+  KD_GLOBAL const float* corners = (KD_GLOBAL const float*)(block + 2u * count);
   KD_COUNT(scene, leaves, 1);
   KD_COUNT(scene, triangle_tests, count);
   for (kd_u32 i = 0; i < count; ++i) {
-    KD_GLOBAL const KdLeafTriangle* entry = scene->leaf_triangles + first + i;
-    KD_GLOBAL const float* corners = entry->corners;
+    const kd_u32 numbers = block[count + i];
+    KD_GLOBAL const float* page = corners + 3u * KD_LEAF_PAGE_CORNERS * (i / KD_LEAF_PAGE_TRIANGLES);
     float t, u, v;
-    if (kd_ray_triangle_line(ray, corners, corners + 3, corners + 6, &t, &u, &v) && t > ray->tmin &&
-        kd_hit_precedes(t, entry->triangle, hit)) {
+    if (kd_ray_triangle_line(ray, page + 3u * (numbers & KD_LEAF_CORNER_MASK),
+                             page + 3u * ((numbers >> KD_LEAF_CORNER_BITS) & KD_LEAF_CORNER_MASK),
+                             page + 3u * (numbers >> (2u * KD_LEAF_CORNER_BITS)), &t, &u, &v) &&
+        t > ray->tmin && kd_hit_precedes(t, block[i], hit)) {
       hit->t = t;
-      hit->triangle = entry->triangle;
+      hit->triangle = block[i];
       hit->u = u;
       hit->v = v;
       found = 1;

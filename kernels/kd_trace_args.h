@@ -11,7 +11,7 @@
 #define KD_TRACE_ARGS(GEOMETRY, BUFFER, VALUE)   \
   GEOMETRY(const KdNode, nodes)                  \
   BUFFER(const kd_u32, empty_leaves)             \
-  GEOMETRY(const KdLeafTriangle, leaf_triangles) \
+  GEOMETRY(const kd_u32, leaf_blocks)            \
   VALUE(float4, bounds_min)                      \
   VALUE(float4, bounds_max)                      \
   BUFFER(const RayRecord, rays)                  \

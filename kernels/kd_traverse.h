@@ -3,7 +3,7 @@
  *
  *   typedef struct KdSceneView {
  *     KD_GLOBAL const KdNode* nodes;          root at index 0
- *     KD_GLOBAL const KdLeafTriangle* leaf_triangles;  leaves are ranges of this array
+ *     KD_GLOBAL const kd_u32* leaf_blocks;    each non-empty leaf's block (kd_types.h)
  *     float bounds_min[3], bounds_max[3];      root voxel
  *   } KdSceneView;
  *

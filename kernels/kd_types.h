@@ -8,8 +8,8 @@
 /* One k-d tree node, 8 bytes (formats/kdtree.md).
  *   inner: payload = bits of the split position (float32); header = far_child << 2 | axis (0,1,2).
  *          The near ("below") child is the next node in the array.
- *   leaf:  payload = its first entry of the leaf-triangle array (KdLeafTriangle);
- *          header = count << 2 | 3. */
+ *   leaf:  payload = the first word of its block in the leaf-block array (below);
+ *          header = count << 2 | 3, count = its triangles. */
 typedef struct KdNode {
   kd_u32 payload;
   kd_u32 header;
@@ -31,16 +31,24 @@ KD_INLINE kd_u32 kd_node_far_child(KdNode node) { return node.header >> 2; }
 KD_INLINE kd_u32 kd_leaf_first(KdNode node) { return node.payload; }
 KD_INLINE kd_u32 kd_leaf_count(KdNode node) { return node.header >> 2; }
 
-/* One entry of a leaf's triangle list (formats/kdtree.md): the corners a, b, c of the triangle
- * (x, y, z each), copied from the scene's positions, then its index in the scene. A leaf is a
- * range of these, so the triangles it holds are one contiguous read, and a triangle in several
- * leaves is copied into each. 40 bytes. */
-typedef struct KdLeafTriangle {
-  float corners[9];
-  kd_u32 triangle;
-} KdLeafTriangle;
-KD_STATIC_ASSERT(sizeof(KdLeafTriangle) == 40 && KD_OFFSETOF(KdLeafTriangle, triangle) == 36,
-                 "KdLeafTriangle: 40 bytes on disk and on the device, corners then index");
+/* A leaf's block of 32-bit words in the leaf-block array (formats/kdtree.md), for a leaf of
+ * count triangles, its first word where the leaf's node points:
+ *   words [0, count):          each triangle's index in the scene;
+ *   words [count, 2 count):    each triangle's corners a, b, c as three numbers of 10 bits,
+ *                              a | b << 10 | c << 20 (bits 30 and 31 zero);
+ *   words [2 count, ...):      the corners, x, y, z each (float32), copied from the scene's
+ *                              positions: those of the leaf's triangles, each distinct corner
+ *                              (bit pattern) once.
+ * Corner number k of triangle i is corner KD_LEAF_PAGE_CORNERS * (i / KD_LEAF_PAGE_TRIANGLES) + k:
+ * each run of KD_LEAF_PAGE_TRIANGLES triangles numbers the corners of a page of its own (at most
+ * 3 x 256 = 768 distinct ones, so 10 bits always suffice); every page but the last is padded to
+ * KD_LEAF_PAGE_CORNERS corners. Leaves of at most 256 triangles, nearly all, have one page. A
+ * leaf's triangles share most of their corners (a mesh's neighbours do), so a block is about
+ * half the bytes of three corners per triangle, and a leaf is one contiguous read. */
+#define KD_LEAF_CORNER_BITS 10u
+#define KD_LEAF_CORNER_MASK ((1u << KD_LEAF_CORNER_BITS) - 1u)
+#define KD_LEAF_PAGE_TRIANGLES 256u
+#define KD_LEAF_PAGE_CORNERS 1024u
 
 /* One record of a ray file (formats/rays.md): little-endian float32, 32 bytes. */
 typedef struct RayRecord {

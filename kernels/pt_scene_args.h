@@ -10,7 +10,7 @@
 
 #define PT_SCENE_BUFFERS(GEOMETRY, SHADING) \
   GEOMETRY(KdNode, nodes)                   \
-  GEOMETRY(KdLeafTriangle, leaf_triangles)  \
+  GEOMETRY(kd_u32, leaf_blocks)             \
   SHADING(float, triangle_vertices)         \
   SHADING(kd_u32, indices)                  \
   SHADING(kd_u32, material_ids)             \

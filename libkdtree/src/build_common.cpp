@@ -243,8 +243,9 @@ KdTree describe_tree(const Scene& scene, const BuildSettings& settings, const Bo
 }
 
 KdTree finish_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel, Subtree&& built) {
+  TraversalArray<uint32_t> blocks = leaf_blocks_of(scene, built.nodes, built.leaf_triangles.data());
   KdTree tree = describe_tree(scene, settings, voxel, std::move(built.nodes));
-  tree.leaf_triangles = leaf_triangles_of(scene, built.leaf_triangles.data(), built.leaf_triangles.size());
+  tree.leaf_blocks = std::move(blocks);
   return tree;
 }
 

@@ -314,11 +314,12 @@ struct RootWork {
 RootWork prepare_root(const Scene& scene);
 
 // The tree of the finished `nodes` with its bounds, settings, scene hash and statistics; its
-// leaf-triangle array is left empty.
+// leaf blocks are left empty.
 KdTree describe_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel,
                      TraversalArray<KdNode>&& nodes);
 
-// Wraps a finished subtree into a KdTree: describe_tree, with the leaf triangles attached.
+// Wraps a finished subtree into a KdTree: describe_tree, with the leaf blocks made
+// (leaf_blocks_of).
 KdTree finish_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel, Subtree&& built);
 
 }  // namespace kdray::detail

@@ -1,7 +1,7 @@
 // build_kdtree: the root's triangles and bounds, then the binned top (build_binned.h) down to
 // nodes of settings.binned_above triangles and the exact event sweep (build_events.h) below,
 // or the exact sweep from the root when binned_above is 0; then the pieces built in parallel
-// are joined and the statistics computed, and the leaf triangles made in memory (build_kdtree)
+// are joined and the statistics computed, and the leaf blocks made in memory (build_kdtree)
 // or as the file is written (build_tree_file).
 #include <kdray/kdtree.h>
 #include <kdray/threads.h>
@@ -97,12 +97,13 @@ TreeSummary build_tree_file(const Scene& scene, const std::string& path, const B
   const auto start = Clock::now();
   TreeSummary summary;
   run_with_threads(control.threads, [&] {
+    const uint32_t* triangles = built.subtree.leaf_triangles.data();
+    const detail::LeafBlockPlan plan = detail::plan_leaf_blocks(scene, built.subtree.nodes, triangles);
     const KdTree described =
         detail::describe_tree(scene, built.settings, built.voxel, std::move(built.subtree.nodes));
     const auto described_at = Clock::now();
     timings.statistics = seconds_between(start, described_at);
-    const TraversalArray<uint32_t>& triangles = built.subtree.leaf_triangles;
-    detail::write_tree_of_scene_triangles(path, described, scene, triangles.data(), triangles.size());
+    detail::write_tree_with_planned_blocks(path, described, scene, triangles, plan);
     timings.write = seconds_between(described_at, Clock::now());
     summary = described;
   });

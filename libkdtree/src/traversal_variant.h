@@ -13,7 +13,7 @@ namespace kdray::detail {
 // The arrays a traversal reads, as plain pointers (the CPU side of KdSceneView).
 struct TraversalArrays {
   const KdNode* nodes;
-  const KdLeafTriangle* leaf_triangles;
+  const uint32_t* leaf_blocks;
   const uint32_t* empty_leaves;    // empty_leaf_bits: every CPU build defines KD_EMPTY_LEAF_BITS
   float bounds_min[3], bounds_max[3];
 };
@@ -24,7 +24,7 @@ template <typename SceneView>
 auto make_view(SceneView scene_view, const TraversalArrays& arrays) {
   const float* lo = arrays.bounds_min;
   const float* hi = arrays.bounds_max;
-  return scene_view(arrays.nodes, arrays.empty_leaves, arrays.leaf_triangles, lo[0], lo[1], lo[2], hi[0], hi[1],
+  return scene_view(arrays.nodes, arrays.empty_leaves, arrays.leaf_blocks, lo[0], lo[1], lo[2], hi[0], hi[1],
                     hi[2]);
 }
 

@@ -20,7 +20,7 @@ detail::TraversalArrays arrays_of(const KdTree& tree, const uint32_t* empty_leav
   detail::TraversalArrays arrays{};
   arrays.nodes = tree.nodes.data();
   arrays.empty_leaves = empty_leaves;
-  arrays.leaf_triangles = tree.leaf_triangles.data();
+  arrays.leaf_blocks = tree.leaf_blocks.data();
   const float* lo = &tree.bounds.min.x;
   const float* hi = &tree.bounds.max.x;
   for (int k = 0; k < 3; ++k) {

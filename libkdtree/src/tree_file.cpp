@@ -4,7 +4,6 @@
 #include <kdray/kdtree.h>
 
 #include "tree_writing.h"
-#include "triangle_corners.h"
 
 #include <kernels/kd_traverse.h>
 
@@ -90,12 +89,37 @@ BuildSettings decode_settings(const std::string& bytes, const std::string& path)
   return settings;
 }
 
+// What is wrong with the block of a leaf of `count` (> 0) triangles at word `first` of the
+// leaf-block array of `size` words (first + 2 count <= size), or null: every triangle index
+// below `triangles`, bits 30 and 31 of every corner-number word zero, and every corner it
+// numbers inside the array. Nothing else matters to a traversal, which reads no other word.
+const char* leaf_block_problem(const uint32_t* blocks, uint64_t size, uint64_t first, uint32_t count,
+                               uint64_t triangles) {
+  const uint32_t* indices = blocks + first;
+  const uint32_t* numbers = indices + count;
+  uint32_t largest_index = 0, high_bits = 0;
+  uint64_t corners_needed = 0;  // one past the highest corner numbered
+  for (uint32_t i = 0; i < count; ++i) {
+    largest_index = std::max(largest_index, indices[i]);
+    const uint32_t word = numbers[i];
+    high_bits |= word >> (3 * KD_LEAF_CORNER_BITS);
+    const uint32_t highest = std::max({word & KD_LEAF_CORNER_MASK, (word >> KD_LEAF_CORNER_BITS) & KD_LEAF_CORNER_MASK,
+                                       (word >> (2 * KD_LEAF_CORNER_BITS)) & KD_LEAF_CORNER_MASK});
+    corners_needed = std::max(corners_needed, uint64_t{KD_LEAF_PAGE_CORNERS} * (i / KD_LEAF_PAGE_TRIANGLES) + highest + 1);
+  }
+  if (largest_index >= triangles) return "holds a triangle index beyond the scene's triangles";
+  if (high_bits != 0) return "has a corner number word with its two top bits set";
+  if (corners_needed > (size - first - 2 * uint64_t{count}) / 3) return "numbers a corner beyond the leaf blocks";
+  return nullptr;
+}
+
 // Checks that the nodes [begin, end) form one subtree whose root is `begin`, at `depth`, in the
 // documented depth-first layout (near child next, far child right after the near subtree), no
-// deeper than KD_MAX_TREE_DEPTH, with every split finite and every leaf range inside the
-// leaf-triangle array. One pass in node order: each inner node leaves its far child pending,
-// each leaf must be followed by the nearest pending node. A load of millions of nodes runs it,
-// so a node's checks are computed without branches and only a failure leaves the loop.
+// deeper than KD_MAX_TREE_DEPTH, with every split finite and every leaf's block inside the
+// leaf-block array and intact (leaf_block_problem). One pass in node order: each inner node
+// leaves its far child pending, each leaf must be followed by the nearest pending node. A load
+// of millions of nodes runs it, so a node's checks are computed without branches and only a
+// failure leaves the loop, but for the blocks of the non-empty leaves.
 void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end, uint32_t depth,
                                const std::string& path) {
   struct Pending {
@@ -107,7 +131,7 @@ void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end,
   Pending pending[KD_MAX_TREE_DEPTH + 2];
   pending[0] = {end, 0};
   uint32_t top = 1;  // entries in `pending`
-  const uint64_t references = tree.leaf_triangles.size();
+  const uint64_t block_words = tree.leaf_blocks.size();
   const KdNode* nodes = tree.nodes.data();
   for (uint64_t index = begin; index < end; ++index) {
     const KdNode node = nodes[index];
@@ -119,9 +143,15 @@ void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end,
     const uint32_t leaf_mask = 0u - static_cast<uint32_t>(leaf);
     const uint32_t inner_valid = static_cast<uint32_t>(field > index + 1) & static_cast<uint32_t>(field < end) &
                                  static_cast<uint32_t>(depth < KD_MAX_TREE_DEPTH) & static_cast<uint32_t>(finite_split);
-    const uint32_t leaf_valid = static_cast<uint32_t>(uint64_t{kd_leaf_first(node)} + field <= references) &
+    const uint32_t leaf_valid = static_cast<uint32_t>(uint64_t{kd_leaf_first(node)} + 2 * field <= block_words) &
                                 static_cast<uint32_t>(resume.node == index + 1);
     const uint32_t valid = (leaf_valid & leaf_mask) | (inner_valid & ~leaf_mask);
+    if (leaf && field != 0 && valid) {
+      const char* problem =
+          leaf_block_problem(tree.leaf_blocks.data(), block_words, kd_leaf_first(node), static_cast<uint32_t>(field),
+                             tree.stats.triangles);
+      if (problem) throw Error(path, "damaged tree: the block of leaf " + std::to_string(index) + " " + problem);
+    }
     if (__builtin_expect(valid == 0, 0)) {
       const std::string at = "damaged tree: node " + std::to_string(index);
       if (!leaf && depth >= KD_MAX_TREE_DEPTH)
@@ -129,7 +159,7 @@ void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end,
       if (!leaf && !finite_split) throw Error(path, at + " has a non-finite split");
       if (!leaf) throw Error(path, at + " has an invalid far child");
       if (resume.node == index + 1)
-        throw Error(path, "damaged tree: leaf " + std::to_string(index) + " reaches past the leaf array");
+        throw Error(path, "damaged tree: leaf " + std::to_string(index) + " reaches past the leaf blocks");
       if (resume.node == tree.nodes.size()) throw Error(path, "damaged tree: unreachable nodes");
       throw Error(path, "damaged tree: node " + std::to_string(resume.node) + " is out of place");
     }
@@ -171,8 +201,8 @@ uint64_t key_of(uint64_t geometry_hash, const std::string& encoded_settings) {
   return XXH3_64bits_digest(state.get());
 }
 
-// Writes `tree` with `leaf_triangles` as its leaf-triangle section.
-void write_tree_sections(const std::string& path, const KdTree& tree, SectionData leaf_triangles) {
+// Writes `tree` with `leaf_blocks` as its leaf-block section.
+void write_tree_sections(const std::string& path, const KdTree& tree, SectionData leaf_blocks) {
   const std::string parameters = encode_settings(tree.settings);
   const std::string statistics = to_portable_binary(tree.stats);
   const float bounds[6] = {tree.bounds.min.x, tree.bounds.min.y, tree.bounds.min.z,
@@ -184,7 +214,7 @@ void write_tree_sections(const std::string& path, const KdTree& tree, SectionDat
       {format::kTreeStatistics, statistics.data(), statistics.size()},
       {format::kTreeBounds, bounds, sizeof bounds},
       {format::kTreeKey, &key, sizeof key},
-      std::move(leaf_triangles),
+      std::move(leaf_blocks),
   };
   write_container(path, ContainerHeaderInfo{format::kTreeMagic, format::kTreeVersion, 0, tree.geometry_hash},
                   sections);
@@ -194,16 +224,15 @@ void write_tree_sections(const std::string& path, const KdTree& tree, SectionDat
 
 void write_tree(const std::string& path, const KdTree& tree) {
   write_tree_sections(path, tree,
-                      {format::kTreeLeafTriangles, tree.leaf_triangles.data(),
-                       tree.leaf_triangles.size() * sizeof(KdLeafTriangle)});
+                      {format::kTreeLeafBlocks, tree.leaf_blocks.data(), tree.leaf_blocks.size() * sizeof(uint32_t)});
 }
 
-void detail::write_tree_of_scene_triangles(const std::string& path, const KdTree& tree, const Scene& scene,
-                                           const uint32_t* triangles, uint64_t count) {
+void detail::write_tree_with_planned_blocks(const std::string& path, const KdTree& tree, const Scene& scene,
+                                            const uint32_t* triangles, const LeafBlockPlan& plan) {
   write_tree_sections(path, tree,
-                      {format::kTreeLeafTriangles, nullptr, count * sizeof(KdLeafTriangle),
+                      {format::kTreeLeafBlocks, nullptr, plan.size_words() * sizeof(uint32_t),
                        [&](uint64_t begin, uint64_t end, char* out) {
-                         detail::leaf_triangle_bytes(scene, triangles, begin, end, out);
+                         detail::leaf_block_bytes(scene, triangles, plan, begin, end, out);
                        }});
 }
 
@@ -213,13 +242,13 @@ uint64_t tree_key(uint64_t geometry_hash, const BuildSettings& settings) {
 
 namespace {
 
-// The tree of a mapped version 3 file, its arrays viewing the mapping, checked throughout.
+// The tree of a mapped version 4 file, its arrays viewing the mapping, checked throughout.
 KdTree tree_of(const MappedContainer& file, const std::string& path) {
   const uint32_t version = file.contents.header.version;
-  if (version < 3)
+  if (version < 4)
     throw Error(path, "a version " + std::to_string(version) +
-                          " tree, which this build no longer reads (version 3 stores its triangles' corners): "
-                          "rebuild it with kdbuild");
+                          " tree, which this build no longer reads (version 4 stores each leaf as one block of its "
+                          "triangles and their shared corners): rebuild it with kdbuild");
   KdTree tree;
   std::string parameters, statistics;
   float bounds[6] = {};
@@ -241,9 +270,8 @@ KdTree tree_of(const MappedContainer& file, const std::string& path) {
       case format::kTreeNodes:
         tree.nodes = {file.mapping, reinterpret_cast<const KdNode*>(bytes), elements(sizeof(KdNode), "node")};
         break;
-      case format::kTreeLeafTriangles:
-        tree.leaf_triangles = {file.mapping, reinterpret_cast<const KdLeafTriangle*>(bytes),
-                               elements(sizeof(KdLeafTriangle), "leaf-triangle")};
+      case format::kTreeLeafBlocks:
+        tree.leaf_blocks = {file.mapping, reinterpret_cast<const uint32_t*>(bytes), elements(sizeof(uint32_t), "leaf-block")};
         break;
       case format::kTreeParameters: parameters.assign(bytes, size); break;
       case format::kTreeStatistics: statistics.assign(bytes, size); break;
@@ -260,7 +288,7 @@ KdTree tree_of(const MappedContainer& file, const std::string& path) {
   }
   constexpr uint32_t kRequired = 1u << format::kTreeNodes | 1u << format::kTreeParameters |
                                  1u << format::kTreeStatistics | 1u << format::kTreeBounds |
-                                 1u << format::kTreeKey | 1u << format::kTreeLeafTriangles;
+                                 1u << format::kTreeKey | 1u << format::kTreeLeafBlocks;
   if ((seen & kRequired) != kRequired) throw Error(path, "damaged file: a required section is missing");
   if (key != key_of(file.contents.header.content_hash, parameters))
     throw Error(path, "damaged tree: its key " + hash_hex(key) + " does not match its geometry and build settings");
@@ -277,29 +305,11 @@ KdTree tree_of(const MappedContainer& file, const std::string& path) {
 }  // namespace
 
 KdTree read_tree(const std::string& path) {
-  // The file is mapped and the tree's two arrays view it. The structure is checked while the
-  // checksum is computed, and the leaf triangles' indices as the checksum reads them: one pass
-  // over the file, and nothing used before all pass.
+  // The file is mapped and the tree's two arrays view it. The structure and the leaf blocks are
+  // checked while the checksum is computed, and nothing is used before both pass.
   KdTree tree;
-  uint32_t largest_triangle = 0;
-  map_container(
-      path, format::kTreeMagic, format::kTreeVersion, "kdtree", [&](const MappedContainer& file) { tree = tree_of(file, path); },
-      [&](const format::SectionEntry& section, const char* bytes, uint64_t begin, uint64_t end) {
-        if (section.id != format::kTreeLeafTriangles) return;
-        // The index field of each record that lies in [begin, end); pieces are multiples of 16
-        // bytes and records of 40, so no field is split between two pieces.
-        constexpr uint64_t kRecord = sizeof(KdLeafTriangle), kField = offsetof(KdLeafTriangle, triangle);
-        uint32_t largest = largest_triangle;
-        for (uint64_t field = (begin + kRecord - 1 - kField) / kRecord * kRecord + kField; field + 4 <= end; field += kRecord) {
-          uint32_t triangle;
-          std::memcpy(&triangle, bytes + field, sizeof triangle);
-          largest = std::max(largest, triangle);
-        }
-        largest_triangle = largest;
-      });
-  if (!tree.leaf_triangles.empty() && largest_triangle >= tree.stats.triangles)
-    throw Error(path, "damaged tree: triangle index " + std::to_string(largest_triangle) + " beyond the scene's " +
-                          std::to_string(tree.stats.triangles));
+  map_container(path, format::kTreeMagic, format::kTreeVersion, "kdtree",
+                [&](const MappedContainer& file) { tree = tree_of(file, path); });
   return tree;
 }
 

@@ -8,7 +8,7 @@
 namespace kdray {
 
 struct DeviceGeometry {
-  cl::Buffer nodes, leaf_triangles;
+  cl::Buffer nodes, leaf_blocks;
 };
 
 struct DeviceScene {

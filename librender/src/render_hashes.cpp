@@ -12,7 +12,7 @@ uint64_t tree_content_hash(const KdTree& tree) {
   XXH3_state_t* state = XXH3_createState();
   XXH3_64bits_reset(state);
   XXH3_64bits_update(state, tree.nodes.data(), tree.nodes.size() * sizeof(KdNode));
-  XXH3_64bits_update(state, tree.leaf_triangles.data(), tree.leaf_triangles.size() * sizeof(KdLeafTriangle));
+  XXH3_64bits_update(state, tree.leaf_blocks.data(), tree.leaf_blocks.size() * sizeof(uint32_t));
   uint64_t hash = XXH3_64bits_digest(state);
   XXH3_freeState(state);
   return hash;

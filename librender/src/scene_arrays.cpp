@@ -99,7 +99,7 @@ void add_emitters(SceneArrays& arrays, const Scene& scene) {
 GeometryArrays geometry_arrays(const KdTree& tree) {
   GeometryArrays geometry;
   geometry.nodes = host_array(tree.nodes);
-  geometry.leaf_triangles = host_array(tree.leaf_triangles);
+  geometry.leaf_blocks = host_array(tree.leaf_blocks);
   const Vec3& lo = tree.bounds.min;
   const Vec3& hi = tree.bounds.max;
   float min[3] = {lo.x, lo.y, lo.z}, max[3] = {hi.x, hi.y, hi.z};

@@ -24,13 +24,22 @@ namespace {
 bool same_tree(const KdTree& a, const KdTree& b) { return test::same_tree_bytes(a, b); }
 
 // FNV-1a 64 over the nodes and the leaves' triangle indices: the tree's shape in one number (the
-// corners stored with each index are the scene's).
+// corners in the leaf blocks are the scene's). Each leaf is fed with its first index in the
+// concatenated triangle lists, as the builder numbers them, not with where its block lies: the
+// fingerprint is the builder's, whatever the file's leaf layout.
 uint64_t tree_fingerprint(const KdTree& tree) {
   uint64_t hash = 0xcbf29ce484222325ull;
   auto feed = [&](const void* data, size_t size) {
     for (size_t i = 0; i < size; ++i) hash = (hash ^ static_cast<const unsigned char*>(data)[i]) * 0x100000001b3ull;
   };
-  feed(tree.nodes.data(), tree.nodes.size() * sizeof(KdNode));
+  uint32_t references = 0;
+  for (KdNode node : tree.nodes) {
+    if (kd_node_is_leaf(node)) {
+      node.payload = references;
+      references += kd_leaf_count(node);
+    }
+    feed(&node, sizeof node);
+  }
   const std::vector<uint32_t> indices = test::leaf_triangle_indices(tree);
   feed(indices.data(), indices.size() * sizeof(uint32_t));
   return hash;
@@ -96,7 +105,7 @@ TEST(KdBuild, StatisticsDescribeTheTree) {
   const TreeStats& stats = tree.stats;
   EXPECT_EQ(stats.inner_nodes + stats.leaves, tree.nodes.size());
   EXPECT_EQ(stats.leaves, stats.inner_nodes + 1);
-  EXPECT_EQ(stats.leaf_references, tree.leaf_triangles.size());
+  EXPECT_EQ(stats.leaf_references, test::leaf_triangle_indices(tree).size());
   EXPECT_GE(stats.references_per_triangle, 1.0);
   EXPECT_LE(stats.max_depth, BuildSettings{}.resolved(scene.triangle_count()).max_depth);
   EXPECT_GT(stats.empty_leaves, 0u) << "empty space around a sphere is cut off";
@@ -287,11 +296,10 @@ TEST(KdBuild, BinnedTreeIsValidAndCloseToTheExactOne) {
       EXPECT_EQ(stats.leaves, stats.inner_nodes + 1);
       EXPECT_LE(stats.max_depth, settings.resolved(scene.triangle_count()).max_depth);
       expect_all_triangles_referenced(scene, binned);
-      const std::vector<uint32_t> indices = test::leaf_triangle_indices(binned);
       for (const KdNode& node : binned.nodes) {
         if (!kd_node_is_leaf(node)) continue;
-        EXPECT_TRUE(std::is_sorted(indices.begin() + kd_leaf_first(node),
-                                   indices.begin() + kd_leaf_first(node) + kd_leaf_count(node)));
+        const uint32_t* block = binned.leaf_blocks.data() + kd_leaf_first(node);
+        EXPECT_TRUE(std::is_sorted(block, block + kd_leaf_count(node)));
       }
       // Binning costs little at the top of a tree; 4 bins above 20 triangles may cost more.
       EXPECT_LT(stats.sah_cost, (settings.bins == 4 ? 1.25 : 1.03) * exact.stats.sah_cost)

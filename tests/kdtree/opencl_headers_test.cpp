@@ -30,9 +30,9 @@ __kernel void report_features(__global int* out) {
   out[1] = KD_SHORT_STACK_SIZE;
 }
 
-__kernel void trace_closest(__global const KdNode* nodes, __global const KdLeafTriangle* leaf_triangles,
+__kernel void trace_closest(__global const KdNode* nodes, __global const kd_u32* leaf_blocks,
                             __global const float* bounds, __global const RayRecord* rays, __global HitRecord* hits) {
-  const KdSceneView scene = kd_scene_view(nodes, 0, leaf_triangles, bounds[0], bounds[1], bounds[2], bounds[3],
+  const KdSceneView scene = kd_scene_view(nodes, 0, leaf_blocks, bounds[0], bounds[1], bounds[2], bounds[3],
                                           bounds[4], bounds[5]);
   size_t i = get_global_id(0);
   hits[i] = kd_intersect_closest(&scene, rays[i]);
@@ -200,7 +200,7 @@ TEST(KdOpenCl, KernelTraversalMatchesCpuWithDepthOneStack) {
   cl_mem hits = device.buffer(gpu.data(), gpu.size() * sizeof(HitRecord));
   device.run("trace_closest",
              {device.buffer(tree.nodes.data(), tree.nodes.size() * sizeof(KdNode)),
-              device.buffer(tree.leaf_triangles.data(), tree.leaf_triangles.size() * sizeof(KdLeafTriangle)),
+              device.buffer(tree.leaf_blocks.data(), tree.leaf_blocks.size() * sizeof(uint32_t)),
               device.buffer(bounds, sizeof bounds),
               device.buffer(rays.data(), rays.size() * sizeof(RayRecord)), hits},
              rays.size(), hits, gpu.data(), gpu.size() * sizeof(HitRecord));

@@ -130,15 +130,18 @@ DoubleHit brute_force_double(const Scene& scene, const RayRecord& ray) {
 
 std::vector<uint32_t> leaf_triangle_indices(const KdTree& tree) {
   std::vector<uint32_t> indices;
-  for (const KdLeafTriangle& entry : tree.leaf_triangles) indices.push_back(entry.triangle);
+  for (const KdNode& node : tree.nodes) {
+    if (!kd_node_is_leaf(node)) continue;
+    const uint32_t* block = tree.leaf_blocks.data() + kd_leaf_first(node);
+    indices.insert(indices.end(), block, block + kd_leaf_count(node));
+  }
   return indices;
 }
 
 bool same_tree_bytes(const KdTree& a, const KdTree& b) {
-  return a.nodes.size() == b.nodes.size() && a.leaf_triangles.size() == b.leaf_triangles.size() &&
+  return a.nodes.size() == b.nodes.size() && a.leaf_blocks.size() == b.leaf_blocks.size() &&
          std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(KdNode)) == 0 &&
-         std::memcmp(a.leaf_triangles.data(), b.leaf_triangles.data(),
-                     a.leaf_triangles.size() * sizeof(KdLeafTriangle)) == 0;
+         std::memcmp(a.leaf_blocks.data(), b.leaf_blocks.data(), a.leaf_blocks.size() * sizeof(uint32_t)) == 0;
 }
 
 }  // namespace kdray::test

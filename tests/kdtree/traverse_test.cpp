@@ -96,6 +96,21 @@ TEST(KdTraverse, MatchesFloatBruteForceOnGeneratedScenes) {
   }
 }
 
+// A tree of one split has two leaves of about a thousand triangles, whose thousands of distinct
+// corners are numbered in pages of their own (kernels/kd_types.h): every corner must be read
+// where the block put it.
+TEST(KdTraverse, LeavesOfManyPagesGiveTheBruteForceHits) {
+  const Scene scene = test::triangle_soup(2000, 9);
+  BuildSettings settings;
+  settings.max_depth = 1;
+  const KdTree tree = build_kdtree(scene, settings);
+  ASSERT_EQ(tree.stats.leaves, 2u);
+  ASSERT_GT(tree.stats.mean_triangles_per_leaf, 3.0 * KD_LEAF_PAGE_TRIANGLES);
+  const std::vector<RayRecord> rays = mixed_rays(scene, tree, 3000, 5);
+  for (TraversalStack stack : {TraversalStack::Short, TraversalStack::Full})
+    expect_same_as_float_brute_force(scene, tree, rays, stack);
+}
+
 TEST(KdTraverse, MatchesFloatBruteForceOnTheDragon) {
   std::string path;
   KDRAY_CORPUS_FILE(path, "dragon/dragon_vcg_23k.ply");
@@ -205,15 +220,18 @@ TEST(KdTraverse, TiesInTGoToTheSmallerTriangleIndex) {
   std::vector<float> corners = triangle;
   corners.insert(corners.end(), triangle.begin(), triangle.end());
   const Scene scene = test::from_triangles(corners);
+  const uint32_t larger_first[] = {1, 0};
   KdTree one_leaf;
   one_leaf.bounds = Bounds{{-1, -1, -1}, {1, 1, 1}};
-  one_leaf.nodes = {leaf_node(0, 2)};
-  const uint32_t larger_first[] = {1, 0};
-  one_leaf.leaf_triangles = leaf_triangles_of(scene, larger_first, 2);
+  TraversalArray<KdNode> nodes = {leaf_node(0, 2)};
+  one_leaf.leaf_blocks = leaf_blocks_of(scene, nodes, larger_first);
+  one_leaf.nodes = std::move(nodes);
   // Split at x = 0: triangle 1 only below, triangle 0 only above. The ray meets the triangles
   // on the split plane, so both leaves touch the hit; the below one comes first.
   KdTree two_leaves = one_leaf;
-  two_leaves.nodes = {inner_node(0, 0.0f, 2), leaf_node(0, 1), leaf_node(1, 1)};
+  nodes = {inner_node(0, 0.0f, 2), leaf_node(0, 1), leaf_node(1, 1)};
+  two_leaves.leaf_blocks = leaf_blocks_of(scene, nodes, larger_first);
+  two_leaves.nodes = std::move(nodes);
   const RayRecord ray{-1, 0, -1, 1, 0, 1, 0, INFINITY};
   for (const KdTree* tree : {&one_leaf, &two_leaves}) {
     for (TraversalStack stack : {TraversalStack::Short, TraversalStack::Depth1, TraversalStack::Full}) {

@@ -1,6 +1,6 @@
 // The .kdtree file: round trip, damage, structural validation and stale trees.
 #include "test_scenes.h"
-#include "triangle_corners.h"
+#include "leaf_blocks.h"
 
 #include <kdray/container_file.h>
 #include <kdray/kdtree.h>
@@ -60,7 +60,7 @@ TEST_F(KdTreeFile, RoundTripKeepsEverything) {
   ASSERT_EQ(back.nodes.size(), tree.nodes.size());
   EXPECT_EQ(0, std::memcmp(back.nodes.data(), tree.nodes.data(), tree.nodes.size() * sizeof(KdNode)));
   EXPECT_TRUE(test::same_tree_bytes(back, tree));
-  EXPECT_TRUE(back.nodes.mapped() && back.leaf_triangles.mapped()) << "a read tree views its file";
+  EXPECT_TRUE(back.nodes.mapped() && back.leaf_blocks.mapped()) << "a read tree views its file";
   EXPECT_EQ(back.settings.traversal_cost, 10.0f);
   EXPECT_EQ(back.settings.max_depth, 12u);
   EXPECT_FALSE(back.settings.perfect_splits);
@@ -70,8 +70,8 @@ TEST_F(KdTreeFile, RoundTripKeepsEverything) {
   EXPECT_NO_THROW(check_tree_matches_scene(back, "a.kdtree", scene_, "s.kdscene"));
 }
 
-// build_tree_file makes the leaf triangles' records as it writes them, a 2 MiB piece of the file
-// at a time, records cut at the pieces' edges: the file must be the one write_tree writes.
+// build_tree_file makes the leaf blocks as it writes them, a 2 MiB piece of the file at a time,
+// blocks cut at the pieces' edges: the file must be the one write_tree writes.
 TEST_F(KdTreeFile, BuiltStraightIntoItsFileIsTheFileWriteTreeWrites) {
   const Scene scene = test::icosphere_scene(6, {0, 0, 0}, 1);  // 81,920 triangles
   BuildTimings timings;
@@ -79,29 +79,44 @@ TEST_F(KdTreeFile, BuiltStraightIntoItsFileIsTheFileWriteTreeWrites) {
       build_tree_file(scene, path("straight.kdtree"), BuildSettings{}, BuildControl{2, {}, &timings});
   const KdTree in_memory = build_kdtree(scene, BuildSettings{});
   write_tree(path("written.kdtree"), in_memory);
-  ASSERT_GT(in_memory.leaf_triangles.size() * sizeof(KdLeafTriangle), uint64_t{3} << 21) << "several pieces";
+  ASSERT_GT(in_memory.leaf_blocks.size() * sizeof(uint32_t), uint64_t{2} << 20) << "blocks cut by a piece's end";
   EXPECT_TRUE(bytes_of(path("straight.kdtree")) == bytes_of(path("written.kdtree")));
   EXPECT_EQ(built.key, in_memory.key);
-  EXPECT_EQ(built.stats.leaf_references, in_memory.leaf_triangles.size());
+  EXPECT_EQ(built.stats.leaf_references, test::leaf_triangle_indices(in_memory).size());
   EXPECT_EQ(built.stats.sah_cost, in_memory.stats.sah_cost);
   EXPECT_GT(timings.write, 0.0);
 }
 
-// The records' bytes in any range, as a writer asks for them: inside one record, across the
-// boundary of two, and whole records with parts at either end.
-TEST_F(KdTreeFile, LeafTriangleBytesOfAnyRangeAreThoseOfTheWholeArray) {
+// The blocks' bytes in any range, as a writer asks for them: inside one block, across the
+// boundary of two, and whole blocks with parts at either end; one leaf of two pages.
+TEST_F(KdTreeFile, LeafBlockBytesOfAnyRangeAreThoseOfTheWholeArray) {
+  ASSERT_GT(scene_.triangle_count(), 300u);
   std::vector<uint32_t> triangles;
-  for (uint32_t t = 0; t < scene_.triangle_count(); ++t) triangles.push_back(t);
-  const TraversalArray<KdLeafTriangle> whole = leaf_triangles_of(scene_, triangles.data(), triangles.size());
+  for (uint32_t t = 0; t < 300; ++t) triangles.push_back(t);
+  // A split on x at 0 (far child 2), then leaves of triangles [0, 20) and [20, 300).
+  TraversalArray<KdNode> nodes = {KdNode{0, 2u << 2}, KdNode{0, 20u << 2 | KD_LEAF_TAG},
+                                  KdNode{20, 280u << 2 | KD_LEAF_TAG}};
+  TraversalArray<KdNode> planned = nodes;
+  const TraversalArray<uint32_t> whole = leaf_blocks_of(scene_, nodes, triangles.data());
+  const detail::LeafBlockPlan plan = detail::plan_leaf_blocks(scene_, planned, triangles.data());
+  EXPECT_EQ(0, std::memcmp(nodes.data(), planned.data(), nodes.size() * sizeof(KdNode)));
+  ASSERT_EQ(plan.size_words(), whole.size());
+  EXPECT_EQ(nodes[2].payload, plan.words[1]);
   const char* bytes = reinterpret_cast<const char*>(whole.data());
-  const uint64_t size = whole.size() * sizeof(KdLeafTriangle);
+  const uint64_t size = whole.size() * sizeof(uint32_t), second = 4 * plan.words[1];
   for (const auto& [begin, end] : std::vector<std::pair<uint64_t, uint64_t>>{
-           {0, size}, {0, 1}, {3, 17}, {36, 44}, {30, 50}, {40, 80}, {13, size - 7}, {size - 1, size}, {77, 77}}) {
+           {0, size}, {0, 1}, {3, 17}, {second - 4, second + 8}, {second - 1, second + 1}, {second, size},
+           {13, size - 7}, {size - 1, size}, {77, 77}}) {
     std::vector<char> made(end - begin + 1, 'x');
-    detail::leaf_triangle_bytes(scene_, triangles.data(), begin, end, made.data());
+    detail::leaf_block_bytes(scene_, triangles.data(), plan, begin, end, made.data());
     EXPECT_EQ(0, std::memcmp(made.data(), bytes + begin, end - begin)) << begin << ".." << end;
     EXPECT_EQ(made.back(), 'x') << begin << ".." << end << ": nothing written past the range";
   }
+  // The second leaf's 280 triangles number their corners in two pages, the first padded to
+  // KD_LEAF_PAGE_CORNERS corners: its block is 2 x 280 words, then 1024 + N corners.
+  const uint64_t corner_words = whole.size() - plan.words[1] - 2 * 280;
+  EXPECT_EQ(corner_words % 3, 0u);
+  EXPECT_GT(corner_words / 3, uint64_t{KD_LEAF_PAGE_CORNERS});
 }
 
 TEST_F(KdTreeFile, BinningIsRecordedAndAnExactTreeKeepsItsKey) {
@@ -118,8 +133,9 @@ TEST_F(KdTreeFile, BinningIsRecordedAndAnExactTreeKeepsItsKey) {
   EXPECT_EQ(read_tree(path("exact.kdtree")).settings.binned_above, 0u);
   EXPECT_NE(tree_key(1, binned), tree_key(1, exact));
   // The exact sweep's section 3 holds the five fields trees had before binning, so its key
-  // changes with the format version only (version 2 gave 0x4237eda0fa487d3c).
-  EXPECT_EQ(tree_key(0x0123456789abcdefull, exact), 0xb7c5220bd88d19c5ull);
+  // changes with the format version only (version 2 gave 0x4237eda0fa487d3c, version 3
+  // 0xb7c5220bd88d19c5).
+  EXPECT_EQ(tree_key(0x0123456789abcdefull, exact), 0xbefeff730f16f7ceull);
 }
 
 // A read tree views its file's pages: a writer replacing the file (by rename, as every writer
@@ -133,7 +149,7 @@ TEST_F(KdTreeFile, AReadTreeOutlivesItsFileBeingReplaced) {
   EXPECT_TRUE(test::same_tree_bytes(read_tree(path("a.kdtree")), other));
   back.nodes.own()[0].payload ^= 1u;
   EXPECT_FALSE(back.nodes.mapped());
-  EXPECT_TRUE(back.leaf_triangles.mapped());
+  EXPECT_TRUE(back.leaf_blocks.mapped());
   EXPECT_TRUE(test::same_tree_bytes(read_tree(path("a.kdtree")), other));
 }
 
@@ -182,13 +198,10 @@ TEST_F(KdTreeFile, InvalidStructureIsRejected) {
   tree = tree_;
   for (KdNode& node : tree.nodes.own())
     if (kd_node_is_leaf(node) && kd_leaf_count(node) > 0) {
-      node.payload = static_cast<uint32_t>(tree.leaf_triangles.size());
+      node.payload = static_cast<uint32_t>(tree.leaf_blocks.size() - 1);
       break;
     }
-  expect_rejected(tree, "leaf range past the array", "leaf array");
-  tree = tree_;
-  tree.leaf_triangles.own()[0].triangle = static_cast<uint32_t>(scene_.triangle_count());
-  expect_rejected(tree, "triangle index", "triangle index");
+  expect_rejected(tree, "leaf block past the array", "past the leaf blocks");
   tree = tree_;
   tree.nodes.own().push_back(tree.nodes[tree.nodes.size() - 1]);
   expect_rejected(tree, "extra node", "unreachable");
@@ -197,20 +210,30 @@ TEST_F(KdTreeFile, InvalidStructureIsRejected) {
   expect_rejected(tree, "no nodes", "no nodes");
 }
 
-// The leaf triangles' indices are checked as the checksum reads the file, in pieces: an index out
-// of range is found in every record, the first, one on either side of a piece's end and the
-// last, in a tree whose leaf triangles span many pieces.
-TEST_F(KdTreeFile, EveryLeafTriangleIndexIsChecked) {
+// Every block is checked, wherever it lies in the array: a triangle index beyond the scene's and
+// the top bits of a corner-number word in the first leaf, one in the middle and the last, and a
+// corner numbered beyond the array in the last (a traversal reads nothing else, so a number
+// that stays inside the array is the checksum's to catch).
+TEST_F(KdTreeFile, EveryLeafBlockIsChecked) {
   const Scene scene = test::icosphere_scene(5, {0, 0, 0}, 1);
   const KdTree intact = build_kdtree(scene, BuildSettings{});
-  const size_t records = intact.leaf_triangles.size();
-  const size_t per_piece = (size_t{256} << 10) / sizeof(KdLeafTriangle);
-  ASSERT_GT(records, 4 * per_piece) << "the leaf triangles should span several pieces";
-  for (const size_t damaged : {size_t{0}, per_piece - 1, per_piece, per_piece + 1, records - 1}) {
-    KdTree tree = intact;
-    tree.leaf_triangles.own()[damaged].triangle = static_cast<uint32_t>(scene.triangle_count());
-    write_tree(path("bad.kdtree"), tree);
-    EXPECT_NE(read_error(path("bad.kdtree")).find("triangle index"), std::string::npos) << "record " << damaged;
+  std::vector<KdNode> leaves;
+  for (const KdNode& node : intact.nodes)
+    if (kd_node_is_leaf(node) && kd_leaf_count(node) > 0) leaves.push_back(node);
+  ASSERT_GT(leaves.size(), 100u);
+  for (const KdNode& leaf : {leaves.front(), leaves[leaves.size() / 2], leaves.back()}) {
+    const uint32_t first = kd_leaf_first(leaf), count = kd_leaf_count(leaf);
+    auto expect_found = [&](uint32_t word, uint32_t value, const char* expected) {
+      KdTree tree = intact;
+      tree.leaf_blocks.own()[word] = value;
+      write_tree(path("bad.kdtree"), tree);
+      const std::string error = read_error(path("bad.kdtree"));
+      EXPECT_NE(error.find(expected), std::string::npos) << "word " << word << ": " << error;
+    };
+    expect_found(first + count - 1, static_cast<uint32_t>(scene.triangle_count()), "triangle index");
+    expect_found(first + 2 * count - 1, 1u << 31, "top bits");
+    if (first == kd_leaf_first(leaves.back()))
+      expect_found(first + count, KD_LEAF_CORNER_MASK << (2 * KD_LEAF_CORNER_BITS), "corner beyond");
   }
 }
 

@@ -70,10 +70,11 @@ enum SceneFlags : uint64_t {
 
 // ---- .kdtree --------------------------------------------------------------------------
 constexpr char kTreeMagic[8] = {'K', 'D', 'T', 'R', 'E', 'E', '\0', '\0'};
-// Version 3 stores each leaf triangle's corners with its index (kTreeLeafTriangles); version 2
-// keyed a tree by its scene's geometry hash and build settings (kTreeKey), version 1 by the
-// scene's content hash. Readers refuse versions 1 and 2 ("rebuild").
-constexpr uint32_t kTreeVersion = 3;
+// Version 4 stores each leaf as one block of its triangles' indices, corner numbers and distinct
+// corners (kTreeLeafBlocks); version 3 stored each leaf triangle's corners with its index
+// (kTreeLeafTriangles); version 2 keyed a tree by its scene's geometry hash and build settings
+// (kTreeKey), version 1 by the scene's content hash. Readers refuse versions 1 to 3 ("rebuild").
+constexpr uint32_t kTreeVersion = 4;
 
 enum TreeSection : uint32_t {
   kTreeNodes = 1,            // KdNode (kernels/kd_types.h), 8 bytes each, root first
@@ -82,7 +83,8 @@ enum TreeSection : uint32_t {
   kTreeStatistics = 4,       // cereal portable binary: TreeStats
   kTreeBounds = 5,           // float32 min x,y,z, max x,y,z of the root voxel
   kTreeKey = 6,              // uint64 tree key (from version 2): geometry hash, settings, version
-  kTreeLeafTriangles = 7,    // KdLeafTriangle (kernels/kd_types.h), 40 bytes each; leaves are ranges of them
+  kTreeLeafTriangles = 7,    // version 3 only: 40-byte records of a leaf triangle's corners and index
+  kTreeLeafBlocks = 8,       // uint32 words: one block per non-empty leaf (kernels/kd_types.h)
 };
 
 }  // namespace kdray::format

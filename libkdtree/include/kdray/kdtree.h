@@ -53,7 +53,7 @@ struct TreeStats {
   uint64_t inner_nodes = 0;
   uint64_t leaves = 0;
   uint64_t empty_leaves = 0;
-  uint64_t leaf_references = 0;    // entries of the leaf-triangle array
+  uint64_t leaf_references = 0;    // triangles of all leaves (a triangle counts in each of its leaves)
   uint32_t max_depth = 0;          // of any leaf, root = 0
   double mean_leaf_depth = 0;
   double mean_triangles_per_leaf = 0;  // over non-empty leaves
@@ -76,7 +76,7 @@ struct TreeSummary {
 
 struct KdTree : TreeSummary {
   TreeArray<KdNode> nodes;                  // root first; see kernels/kd_types.h
-  TreeArray<KdLeafTriangle> leaf_triangles;  // leaves are ranges of this array
+  TreeArray<uint32_t> leaf_blocks;  // a block of words per non-empty leaf (kernels/kd_types.h)
 };
 
 // The key of the tree of a scene with this geometry hash built with these settings: XXH3-64 over
@@ -96,7 +96,7 @@ struct BuildTimings {
                         // of the exact subtrees below binned nodes)
   double assemble = 0;  // joining the subtrees built in parallel into one node array
   double statistics = 0;
-  double write = 0;  // build_tree_file: the file written, its leaf triangles made as it goes
+  double write = 0;  // build_tree_file: the file written, its leaf blocks made as it goes
 };
 
 struct BuildControl {
@@ -109,18 +109,19 @@ struct BuildControl {
 // with non-finite vertices are left out. Throws kdray::Error for settings out of range.
 KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const BuildControl& control = {});
 
-// The same tree written to `path` (atomically) as write_tree writes it, its leaf triangles made
+// The same tree written to `path` (atomically) as write_tree writes it, its leaf blocks made
 // from the scene as the file is written rather than held in memory beside it: a build's peak
 // memory is the builder's. read_tree(path) reads the tree. Throws kdray::Error.
 TreeSummary build_tree_file(const Scene& scene, const std::string& path, const BuildSettings& settings,
                        const BuildControl& control = {});
 
-// The leaf-triangle entries of `count` scene triangles, in the order given: each one's corners,
-// copied from the scene's positions, and its index (KdLeafTriangle). The triangles must be
-// the scene's.
-TraversalArray<KdLeafTriangle> leaf_triangles_of(const Scene& scene, const uint32_t* triangles, size_t count);
+// The leaf-block array (kernels/kd_types.h) of the leaves of `nodes`, whose payloads are their
+// first entries of `triangles`, an array of the scene's triangle indices that the leaves are
+// ranges of (the builder's); sets each leaf's payload to its block's first word. Throws
+// kdray::Error when the array would outgrow the 32-bit payloads.
+TraversalArray<uint32_t> leaf_blocks_of(const Scene& scene, TraversalArray<KdNode>& nodes, const uint32_t* triangles);
 
-// Statistics of a tree, from its nodes (its leaf-triangle array need not be there).
+// Statistics of a tree, from its nodes (its leaf blocks need not be there).
 TreeStats compute_tree_stats(const KdTree& tree, uint64_t scene_triangles);
 
 // Writes atomically. Throws kdray::Error.

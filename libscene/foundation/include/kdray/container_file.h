@@ -59,18 +59,10 @@ struct MappedContainer {
 // `check_alongside` (optional) runs on the mapped container while the checksum is computed on
 // another thread, so a reader's own pass over the sections costs no extra time: it may read any
 // byte inside a section and must not act on one, since nothing is trusted until this returns.
-// `inspect_piece` (optional) is called on the checksum's thread for each piece of a section
-// right after the piece is hashed, while it is in cache, with the section, its bytes and the
-// piece's byte range in them ([begin, end), both multiples of 16 unless end is the section's
-// end): a check that reads every byte of a large section costs no second pass over
-// memory that way; it records what it finds and does not throw. A checksum mismatch is the error
-// thrown, whatever the checks found; else check_alongside's error.
-using PieceInspector =
-    std::function<void(const format::SectionEntry& section, const char* bytes, uint64_t begin, uint64_t end)>;
+// A checksum mismatch is the error thrown, whatever the check found; else check_alongside's error.
 MappedContainer map_container(const std::string& path, const char (&magic)[8], uint32_t max_version,
                               const char* kind_name,
-                              const std::function<void(const MappedContainer&)>& check_alongside = {},
-                              const PieceInspector& inspect_piece = {});
+                              const std::function<void(const MappedContainer&)>& check_alongside = {});
 
 // Reads only the header and section table (validated against the file size, no checksum):
 // cheap identification for kdinfo and for stale-tree checks before a full load.

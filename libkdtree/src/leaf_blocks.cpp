@@ -1,0 +1,139 @@
+// Leaf blocks (kernels/kd_types.h): each non-empty leaf's triangle indices, corner numbers and
+// distinct corners, planned once for their sizes and made where they go.
+#include "leaf_blocks.h"
+
+#include <kdray/error.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/enumerable_thread_specific.h>
+
+#include <algorithm>
+#include <cstring>
+
+namespace kdray {
+namespace detail {
+namespace {
+
+// A page's distinct corners are its distinct scene vertices (corners of equal position but
+// different vertices are stored twice; meshes rarely have them), found by a linear search: a
+// page holds at most 768, and a leaf usually fewer than ten.
+uint32_t corner_number(std::vector<uint32_t>& page_vertices, uint32_t vertex) {
+  const auto number = static_cast<uint32_t>(std::find(page_vertices.begin(), page_vertices.end(), vertex) -
+                                            page_vertices.begin());
+  if (number == page_vertices.size()) page_vertices.push_back(vertex);
+  return number;
+}
+
+// The size in words of the block of the leaf of `count` triangles `triangles[0, count)`.
+uint64_t block_words(const Scene& scene, const uint32_t* triangles, uint32_t count,
+                     std::vector<uint32_t>& page_vertices) {
+  uint64_t size = 2 * uint64_t{count};
+  for (uint32_t page_start = 0; page_start < count; page_start += KD_LEAF_PAGE_TRIANGLES) {
+    const uint32_t page_end = std::min(count, page_start + KD_LEAF_PAGE_TRIANGLES);
+    page_vertices.clear();
+    for (uint32_t i = page_start; i < page_end; ++i)
+      for (uint32_t corner = 0; corner < 3; ++corner)
+        corner_number(page_vertices, scene.indices[3 * size_t{triangles[i]} + corner]);
+    // Every page but the last fills its KD_LEAF_PAGE_CORNERS corners.
+    size += 3 * (page_end < count ? uint64_t{KD_LEAF_PAGE_CORNERS} : page_vertices.size());
+  }
+  return size;
+}
+
+void put_word(char* out, uint64_t word, uint32_t value) { std::memcpy(out + 4 * word, &value, sizeof value); }
+
+// The block itself, `size` words (block_words), to out; the padding of full pages is zeros.
+void make_block(const Scene& scene, const uint32_t* triangles, uint32_t count, uint64_t size,
+                std::vector<uint32_t>& page_vertices, char* out) {
+  std::memset(out, 0, 4 * size);
+  for (uint32_t i = 0; i < count; ++i) put_word(out, i, triangles[i]);
+  for (uint32_t page_start = 0; page_start < count; page_start += KD_LEAF_PAGE_TRIANGLES) {
+    const uint32_t page_end = std::min(count, page_start + KD_LEAF_PAGE_TRIANGLES);
+    page_vertices.clear();
+    for (uint32_t i = page_start; i < page_end; ++i) {
+      uint32_t numbers = 0;
+      for (uint32_t corner = 0; corner < 3; ++corner)
+        numbers |= corner_number(page_vertices, scene.indices[3 * size_t{triangles[i]} + corner])
+                   << (KD_LEAF_CORNER_BITS * corner);
+      put_word(out, count + i, numbers);
+    }
+    const uint64_t page_first = 2 * uint64_t{count} + 3 * uint64_t{KD_LEAF_PAGE_CORNERS} * (page_start / KD_LEAF_PAGE_TRIANGLES);
+    for (size_t k = 0; k < page_vertices.size(); ++k)
+      std::memcpy(out + 4 * (page_first + 3 * k), &scene.positions[page_vertices[k]], 3 * sizeof(float));
+  }
+}
+
+}  // namespace
+
+LeafBlockPlan plan_leaf_blocks(const Scene& scene, TraversalArray<KdNode>& nodes, const uint32_t* triangles) {
+  LeafBlockPlan plan;
+  std::vector<size_t> leaf_nodes;
+  for (size_t n = 0; n < nodes.size(); ++n)
+    if (kd_node_is_leaf(nodes[n]) && kd_leaf_count(nodes[n]) > 0) {
+      leaf_nodes.push_back(n);
+      plan.entries.push_back(kd_leaf_first(nodes[n]));
+      plan.counts.push_back(kd_leaf_count(nodes[n]));
+    }
+  plan.words.resize(leaf_nodes.size() + 1);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, leaf_nodes.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
+    std::vector<uint32_t> page_vertices;
+    for (size_t leaf = range.begin(); leaf < range.end(); ++leaf)
+      plan.words[leaf + 1] = block_words(scene, triangles + plan.entries[leaf], plan.counts[leaf], page_vertices);
+  });
+  for (size_t leaf = 0; leaf < leaf_nodes.size(); ++leaf) plan.words[leaf + 1] += plan.words[leaf];
+  if (plan.size_words() > UINT32_MAX)
+    throw Error("", "the tree's leaf blocks would take " + std::to_string(plan.size_words()) +
+                        " words, more than the 32-bit leaf payloads can address");
+  // Payloads in node order: each leaf's block start, an empty leaf the next block's.
+  size_t next_leaf = 0;
+  for (size_t n = 0; n < nodes.size(); ++n) {
+    if (!kd_node_is_leaf(nodes[n])) continue;
+    nodes[n].payload = static_cast<uint32_t>(plan.words[next_leaf]);
+    if (kd_leaf_count(nodes[n]) > 0) ++next_leaf;
+  }
+  return plan;
+}
+
+void leaf_block_bytes(const Scene& scene, const uint32_t* triangles, const LeafBlockPlan& plan, uint64_t begin,
+                      uint64_t end, char* out) {
+  if (begin >= end) return;
+  // The leaves whose blocks meet [begin, end): from the one holding `begin` to the one holding end - 1.
+  const auto& words = plan.words;
+  const size_t first = static_cast<size_t>(std::upper_bound(words.begin(), words.end(), begin / 4) - words.begin()) - 1;
+  const size_t last = static_cast<size_t>(std::upper_bound(words.begin(), words.end(), (end - 1) / 4) - words.begin());
+  // A block wholly inside the range is made where it goes; one the range cuts, in a scratch
+  // block first.
+  struct Scratch {
+    std::vector<uint32_t> page_vertices;
+    std::vector<char> block;
+  };
+  tbb::enumerable_thread_specific<Scratch> scratches;
+  tbb::parallel_for(tbb::blocked_range<size_t>(first, last, 256), [&](const tbb::blocked_range<size_t>& range) {
+    Scratch& scratch = scratches.local();
+    for (size_t leaf = range.begin(); leaf < range.end(); ++leaf) {
+      const uint64_t block_begin = 4 * words[leaf], block_end = 4 * words[leaf + 1];
+      const uint64_t size = words[leaf + 1] - words[leaf];
+      const uint32_t* leaf_triangles = triangles + plan.entries[leaf];
+      if (block_begin >= begin && block_end <= end) {
+        make_block(scene, leaf_triangles, plan.counts[leaf], size, scratch.page_vertices, out + (block_begin - begin));
+        continue;
+      }
+      scratch.block.resize(4 * size);
+      make_block(scene, leaf_triangles, plan.counts[leaf], size, scratch.page_vertices, scratch.block.data());
+      const uint64_t from = std::max(begin, block_begin), to = std::min(end, block_end);
+      std::memcpy(out + (from - begin), scratch.block.data() + (from - block_begin), to - from);
+    }
+  });
+}
+
+}  // namespace detail
+
+TraversalArray<uint32_t> leaf_blocks_of(const Scene& scene, TraversalArray<KdNode>& nodes, const uint32_t* triangles) {
+  const detail::LeafBlockPlan plan = detail::plan_leaf_blocks(scene, nodes, triangles);
+  TraversalArray<uint32_t> blocks(plan.size_words());
+  detail::leaf_block_bytes(scene, triangles, plan, 0, 4 * plan.size_words(), reinterpret_cast<char*>(blocks.data()));
+  return blocks;
+}
+
+}  // namespace kdray

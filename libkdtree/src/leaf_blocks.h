@@ -1,0 +1,32 @@
+// The leaf-block array (kernels/kd_types.h) planned for a built tree's leaves and made a byte
+// range at a time, for a writer that makes the blocks as it writes them (build_tree_file) as
+// well as for the array in memory (leaf_blocks_of).
+#pragma once
+
+#include <kdray/kdtree.h>
+#include <kdray/scene.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace kdray::detail {
+
+// Where each non-empty leaf's block goes, in node order.
+struct LeafBlockPlan {
+  std::vector<uint64_t> entries;  // the leaf's first entry of the builder's triangle array
+  std::vector<uint32_t> counts;   // its triangles
+  std::vector<uint64_t> words;    // its block's first word; then one more, the array's size
+  uint64_t size_words() const { return words.back(); }
+};
+
+// Plans the blocks of the leaves of `nodes`, whose payloads are still their first entries of
+// `triangles` (the builder's array of scene triangle indices), and sets each leaf's payload to
+// its block's first word (an empty leaf's to where the next block starts). Throws kdray::Error
+// when the array would outgrow the 32-bit payloads.
+LeafBlockPlan plan_leaf_blocks(const Scene& scene, TraversalArray<KdNode>& nodes, const uint32_t* triangles);
+
+// Bytes [begin, end) of the planned leaf-block array, to out; made in parallel.
+void leaf_block_bytes(const Scene& scene, const uint32_t* triangles, const LeafBlockPlan& plan, uint64_t begin,
+                      uint64_t end, char* out);
+
+}  // namespace kdray::detail

@@ -68,20 +68,19 @@ void make_block(const Scene& scene, const uint32_t* triangles, uint32_t count, u
 
 LeafBlockPlan plan_leaf_blocks(const Scene& scene, TraversalArray<KdNode>& nodes, const uint32_t* triangles) {
   LeafBlockPlan plan;
-  std::vector<size_t> leaf_nodes;
-  for (size_t n = 0; n < nodes.size(); ++n)
-    if (kd_node_is_leaf(nodes[n]) && kd_leaf_count(nodes[n]) > 0) {
-      leaf_nodes.push_back(n);
-      plan.entries.push_back(kd_leaf_first(nodes[n]));
-      plan.counts.push_back(kd_leaf_count(nodes[n]));
+  for (const KdNode& node : nodes)
+    if (kd_node_is_leaf(node) && kd_leaf_count(node) > 0) {
+      plan.entries.push_back(kd_leaf_first(node));
+      plan.counts.push_back(kd_leaf_count(node));
     }
-  plan.words.resize(leaf_nodes.size() + 1);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, leaf_nodes.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
+  const size_t leaves = plan.counts.size();
+  plan.words.resize(leaves + 1);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves, 1024), [&](const tbb::blocked_range<size_t>& range) {
     std::vector<uint32_t> page_vertices;
     for (size_t leaf = range.begin(); leaf < range.end(); ++leaf)
       plan.words[leaf + 1] = block_words(scene, triangles + plan.entries[leaf], plan.counts[leaf], page_vertices);
   });
-  for (size_t leaf = 0; leaf < leaf_nodes.size(); ++leaf) plan.words[leaf + 1] += plan.words[leaf];
+  for (size_t leaf = 0; leaf < leaves; ++leaf) plan.words[leaf + 1] += plan.words[leaf];
   if (plan.size_words() > UINT32_MAX)
     throw Error("", "the tree's leaf blocks would take " + std::to_string(plan.size_words()) +
                         " words, more than the 32-bit leaf payloads can address");

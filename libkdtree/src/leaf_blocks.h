@@ -13,7 +13,7 @@ namespace kdray::detail {
 
 // Where each non-empty leaf's block goes, in node order.
 struct LeafBlockPlan {
-  std::vector<uint64_t> entries;  // the leaf's first entry of the builder's triangle array
+  std::vector<uint32_t> entries;  // the leaf's first entry of the builder's triangle array
   std::vector<uint32_t> counts;   // its triangles
   std::vector<uint64_t> words;    // its block's first word; then one more, the array's size
   uint64_t size_words() const { return words.back(); }

@@ -18,6 +18,11 @@ KDBUILD=$BUILD/tools/kdbuild/kdbuild
 KDRENDER=$BUILD/tools/kdrender/kdrender
 KDTRACE=$BUILD/tools/kdtrace/kdtrace
 KDCOMPARE=$BUILD/tools/kdcompare/kdcompare
+KDINFO=$BUILD/tools/kdinfo/kdinfo
+
+# readable_by BUILD FILE: whether BUILD's kdinfo reads FILE (a tree kept from a run with another
+# format version is not, and is rebuilt).
+readable_by() { [[ -f "$2" ]] && "$1/tools/kdinfo/kdinfo" "$2" > /dev/null 2>&1; }
 
 # corpus_file PATH: PATH itself when absolute (a mesh of bench/make_meshes.py, say), else the
 # corpus file it names.

@@ -47,7 +47,7 @@ for entry in "${meshes[@]}"; do
   scene="$work/$name.kdscene"
   tree="$work/$name.kdtree"
   [[ -f "$scene" ]] || "$KDCONVERT" "$(corpus_file "${entry#*=}")" "$scene" --quiet > /dev/null
-  [[ -f "$tree" ]] || "$KDBUILD" "$scene" "$tree" --quiet > /dev/null
+  readable_by "$BUILD" "$tree" || "$KDBUILD" "$scene" "$tree" --quiet > /dev/null
   [[ -f "$work/$name.random.rays" ]] ||
     "$KDTRACE" "$scene" "$tree" --generate random --count "$rays" --seed 1 --write-rays "$work/$name.random.rays" > /dev/null
   [[ -f "$work/$name.camera.rays" ]] ||

@@ -34,10 +34,10 @@ machine_line
 printf "%-14s %9s %9s %9s %9s %9s %9s %9s\n" mesh "MB" "ready s" "before s" "start s" "cat s" "fresh s" "ready/cat"
 for mesh in "${meshes[@]}"; do
   name=$(basename "${mesh%.*}")
-  [[ -f "$WORK/$name.kdtree" ]] || scene_files "$(corpus_file "$mesh")" "$name"
+  readable_by "$BUILD" "$WORK/$name.kdtree" || scene_files "$(corpus_file "$mesh")" "$name"
   files=("$WORK/$name.kdscene" "$WORK/$name.kdtree")
   baseline_files=("$WORK/$name.kdscene" "$WORK/$name.baseline.kdtree")
-  [[ -z "$baseline" || -f "${baseline_files[1]}" ]] ||
+  [[ -z "$baseline" ]] || readable_by "$baseline" "${baseline_files[1]}" ||
     "$baseline/tools/kdbuild/kdbuild" "${baseline_files[@]}" > /dev/null
   cat "${files[@]}" > /dev/null
   ready=() before=() start=() plain=() fresh=()

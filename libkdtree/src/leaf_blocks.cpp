@@ -25,43 +25,44 @@ uint32_t corner_number(std::vector<uint32_t>& page_vertices, uint32_t vertex) {
   return number;
 }
 
-// The size in words of the block of the leaf of `count` triangles `triangles[0, count)`.
-uint64_t block_words(const Scene& scene, const uint32_t* triangles, uint32_t count,
-                     std::vector<uint32_t>& page_vertices) {
-  uint64_t size = 2 * uint64_t{count};
-  for (uint32_t page_start = 0; page_start < count; page_start += KD_LEAF_PAGE_TRIANGLES) {
-    const uint32_t page_end = std::min(count, page_start + KD_LEAF_PAGE_TRIANGLES);
-    page_vertices.clear();
-    for (uint32_t i = page_start; i < page_end; ++i)
-      for (uint32_t corner = 0; corner < 3; ++corner)
-        corner_number(page_vertices, scene.indices[3 * size_t{triangles[i]} + corner]);
-    // Every page but the last fills its KD_LEAF_PAGE_CORNERS corners.
-    size += 3 * (page_end < count ? uint64_t{KD_LEAF_PAGE_CORNERS} : page_vertices.size());
+// Numbers the corners of the leaf's triangles [page_start, page_end), one page: page_vertices
+// becomes the page's distinct vertices and, where `numbers` is given, numbers[i] triangle i's
+// corner-number word.
+void number_page(const Scene& scene, const uint32_t* triangles, uint32_t page_start, uint32_t page_end,
+                 std::vector<uint32_t>& page_vertices, uint32_t* numbers) {
+  page_vertices.clear();
+  for (uint32_t i = page_start; i < page_end; ++i) {
+    uint32_t word = 0;
+    for (uint32_t corner = 0; corner < 3; ++corner)
+      word |= corner_number(page_vertices, scene.indices[3 * size_t{triangles[i]} + corner])
+              << (KD_LEAF_CORNER_BITS * corner);
+    if (numbers) numbers[i] = word;
   }
-  return size;
 }
 
-void put_word(char* out, uint64_t word, uint32_t value) { std::memcpy(out + 4 * word, &value, sizeof value); }
+// The size in words of the block of the leaf of `count` triangles `triangles[0, count)`: every
+// page but the last fills its KD_LEAF_PAGE_CORNERS corners.
+uint64_t block_words(const Scene& scene, const uint32_t* triangles, uint32_t count,
+                     std::vector<uint32_t>& page_vertices) {
+  const uint32_t last_page = (count - 1) / KD_LEAF_PAGE_TRIANGLES;
+  number_page(scene, triangles, last_page * KD_LEAF_PAGE_TRIANGLES, count, page_vertices, nullptr);
+  return 2 * uint64_t{count} + 3 * (uint64_t{KD_LEAF_PAGE_CORNERS} * last_page + page_vertices.size());
+}
 
 // The block itself, `size` words (block_words), to out; the padding of full pages is zeros.
 void make_block(const Scene& scene, const uint32_t* triangles, uint32_t count, uint64_t size,
-                std::vector<uint32_t>& page_vertices, char* out) {
+                std::vector<uint32_t>& page_vertices, std::vector<uint32_t>& numbers, char* out) {
   std::memset(out, 0, 4 * size);
-  for (uint32_t i = 0; i < count; ++i) put_word(out, i, triangles[i]);
+  std::memcpy(out, triangles, 4 * size_t{count});
+  numbers.resize(count);
   for (uint32_t page_start = 0; page_start < count; page_start += KD_LEAF_PAGE_TRIANGLES) {
-    const uint32_t page_end = std::min(count, page_start + KD_LEAF_PAGE_TRIANGLES);
-    page_vertices.clear();
-    for (uint32_t i = page_start; i < page_end; ++i) {
-      uint32_t numbers = 0;
-      for (uint32_t corner = 0; corner < 3; ++corner)
-        numbers |= corner_number(page_vertices, scene.indices[3 * size_t{triangles[i]} + corner])
-                   << (KD_LEAF_CORNER_BITS * corner);
-      put_word(out, count + i, numbers);
-    }
+    number_page(scene, triangles, page_start, std::min(count, page_start + KD_LEAF_PAGE_TRIANGLES), page_vertices,
+                numbers.data());
     const uint64_t page_first = 2 * uint64_t{count} + 3 * uint64_t{KD_LEAF_PAGE_CORNERS} * (page_start / KD_LEAF_PAGE_TRIANGLES);
     for (size_t k = 0; k < page_vertices.size(); ++k)
       std::memcpy(out + 4 * (page_first + 3 * k), &scene.positions[page_vertices[k]], 3 * sizeof(float));
   }
+  std::memcpy(out + 4 * size_t{count}, numbers.data(), 4 * size_t{count});
 }
 
 }  // namespace
@@ -104,7 +105,7 @@ void leaf_block_bytes(const Scene& scene, const uint32_t* triangles, const LeafB
   // A block wholly inside the range is made where it goes; one the range cuts, in a scratch
   // block first.
   struct Scratch {
-    std::vector<uint32_t> page_vertices;
+    std::vector<uint32_t> page_vertices, numbers;
     std::vector<char> block;
   };
   tbb::enumerable_thread_specific<Scratch> scratches;
@@ -115,11 +116,13 @@ void leaf_block_bytes(const Scene& scene, const uint32_t* triangles, const LeafB
       const uint64_t size = words[leaf + 1] - words[leaf];
       const uint32_t* leaf_triangles = triangles + plan.entries[leaf];
       if (block_begin >= begin && block_end <= end) {
-        make_block(scene, leaf_triangles, plan.counts[leaf], size, scratch.page_vertices, out + (block_begin - begin));
+        make_block(scene, leaf_triangles, plan.counts[leaf], size, scratch.page_vertices, scratch.numbers,
+                   out + (block_begin - begin));
         continue;
       }
       scratch.block.resize(4 * size);
-      make_block(scene, leaf_triangles, plan.counts[leaf], size, scratch.page_vertices, scratch.block.data());
+      make_block(scene, leaf_triangles, plan.counts[leaf], size, scratch.page_vertices, scratch.numbers,
+                 scratch.block.data());
       const uint64_t from = std::max(begin, block_begin), to = std::min(end, block_end);
       std::memcpy(out + (from - begin), scratch.block.data() + (from - block_begin), to - from);
     }

@@ -132,6 +132,10 @@ void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end,
   pending[0] = {end, 0};
   uint32_t top = 1;  // entries in `pending`
   const uint64_t block_words = tree.leaf_blocks.size();
+  // The index and corner-number words of the leaves checked so far: blocks do not overlap, so
+  // these stay within the array, which bounds the checks' work by the file's size (leaves that
+  // all claim one large block would otherwise make it quadratic).
+  uint64_t words_checked = 0;
   const KdNode* nodes = tree.nodes.data();
   for (uint64_t index = begin; index < end; ++index) {
     const KdNode node = nodes[index];
@@ -147,6 +151,9 @@ void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end,
                                 static_cast<uint32_t>(resume.node == index + 1);
     const uint32_t valid = (leaf_valid & leaf_mask) | (inner_valid & ~leaf_mask);
     if (leaf && field != 0 && valid) {
+      words_checked += 2 * field;
+      if (words_checked > block_words)
+        throw Error(path, "damaged tree: its leaves claim more words than the leaf blocks hold");
       const char* problem =
           leaf_block_problem(tree.leaf_blocks.data(), block_words, kd_leaf_first(node), static_cast<uint32_t>(field),
                              tree.stats.triangles);

@@ -237,6 +237,22 @@ TEST_F(KdTreeFile, EveryLeafBlockIsChecked) {
   }
 }
 
+// Leaves that all claim the same large block: their checks would cost the block's size each, so
+// the reader stops once the leaves claim more words than the array holds.
+TEST_F(KdTreeFile, LeavesClaimingOneBlockAreRejected) {
+  KdTree tree = tree_;
+  const uint32_t count = 200;  // each leaf a valid block of one page, all at word 0
+  ASSERT_GT(tree.leaf_blocks.size(), 2 * count + 3);
+  ASSERT_GT(tree.stats.leaves * 2 * count, tree.leaf_blocks.size());
+  for (KdNode& node : tree.nodes.own())
+    if (kd_node_is_leaf(node)) node = KdNode{0, count << 2 | KD_LEAF_TAG};
+  TraversalArray<uint32_t>& words = tree.leaf_blocks.own();
+  for (uint32_t i = 0; i < count; ++i) words[i] = 0, words[count + i] = 0;
+  write_tree(path("claims.kdtree"), tree);
+  EXPECT_NE(read_error(path("claims.kdtree")).find("claim more words"), std::string::npos)
+      << read_error(path("claims.kdtree"));
+}
+
 // A file damaged in its structure and in its bytes: the checksum is what the reader reports.
 TEST_F(KdTreeFile, AChecksumMismatchIsReportedBeforeWhatTheChecksBesideItFound) {
   KdTree tree = tree_;

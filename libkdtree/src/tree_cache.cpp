@@ -140,7 +140,9 @@ KdTree TreeCache::build(uint64_t key, const Scene& scene, const std::string& sce
   if (built.key != key)
     throw Error(scene_path, "the geometry hash the scene records (" + hash_hex(scene.geometry_hash) +
                                 ") is not the hash of its triangles (" + hash_hex(built.geometry_hash) + ")");
-  KdTree tree = read_tree(entry.temporary_path());  // still there after the rename, or a winner's copy
+  // Mapped before the commit: a concurrent builder's entry, should it win, has the same bytes,
+  // and the mapping outlives the temporary's rename or removal.
+  KdTree tree = read_tree(entry.temporary_path());
   entry.commit_unless_exists();
   mark_used(key, scene_path);
   return tree;

@@ -113,7 +113,7 @@ KdTree build_kdtree(const Scene& scene, const BuildSettings& settings, const Bui
 // from the scene as the file is written rather than held in memory beside it: a build's peak
 // memory is the builder's. read_tree(path) reads the tree. Throws kdray::Error.
 TreeSummary build_tree_file(const Scene& scene, const std::string& path, const BuildSettings& settings,
-                       const BuildControl& control = {});
+                            const BuildControl& control = {});
 
 // The leaf-block array (kernels/kd_types.h) of the leaves of `nodes`, whose payloads are their
 // first entries of `triangles`, an array of the scene's triangle indices that the leaves are

@@ -126,7 +126,7 @@ KD_INLINE int kd_ray_box(const KdRay* ray, const float bmin[3], const float bmax
 /* Watertight ray/triangle test against the whole line of the ray. Returns 1 when the line
  * passes through the triangle (a, b, c) and writes its t and the barycentrics u (of b) and
  * v (of c); the caller decides which t it accepts. Triangles seen edge-on (determinant 0) are
- * missed from both sides. The corners are read where they lie (the kernels: the leaf triangles
+ * missed from both sides. The corners are read where they lie (the kernels: the leaf blocks
  * in global memory), in the ray's axis order: copied into local arrays first, they
  * were stored to the stack and read back by index, at a dozen instructions per test. */
 KD_HOT_INLINE int kd_ray_triangle_line(const KdRay* ray, KD_GLOBAL const float* a, KD_GLOBAL const float* b,

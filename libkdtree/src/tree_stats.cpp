@@ -132,7 +132,7 @@ TreeStats compute_tree_stats(const KdTree& tree, uint64_t scene_triangles) {
   stats.inner_nodes = totals.inner_nodes;
   stats.leaves = totals.leaves;
   stats.empty_leaves = totals.empty_leaves;
-  stats.leaf_references = totals.references;  // the leaves' ranges cover the array once
+  stats.leaf_references = totals.references;  // each leaf's triangles, counted in every leaf
   stats.max_depth = totals.max_depth;
   stats.sah_cost = totals.sah_cost;
   const uint64_t non_empty_leaves = stats.leaves - stats.empty_leaves;

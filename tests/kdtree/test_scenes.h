@@ -30,9 +30,9 @@ HitRecord brute_force_float(const Scene& scene, const RayRecord& ray, bool skip_
 // True when the hit's triangle contains the ray origin (its exact t is ~0).
 bool is_origin_hit(const Scene& scene, const RayRecord& ray, const HitRecord& hit);
 
-// The scene triangle of each leaf-triangle entry of the tree, in order.
+// The scene triangles of the tree's leaves, leaf after leaf in node order.
 std::vector<uint32_t> leaf_triangle_indices(const KdTree& tree);
-// Whether two trees have the same node and leaf-triangle bytes.
+// Whether two trees have the same node and leaf-block bytes.
 bool same_tree_bytes(const KdTree& a, const KdTree& b);
 
 // The closest double-precision hit over all triangles (double_hit.h), ignoring hits at t ~ 0

@@ -87,7 +87,7 @@ int merge(const Options& o, bool range_given) {
   return kExitOk;
 }
 
-// Peak memory of a render: the scene and the tree (its leaf triangles' corners included) are held
+// Peak memory of a render: the scene and the tree (its leaf blocks' corners included) are held
 // by the host and again by the OpenCL device (host memory on PoCL), and each film channel keeps
 // exact sums, means and the device's accumulators. An estimate with a margin, not a measurement
 // (RELIABILITY.md, Resource limits).

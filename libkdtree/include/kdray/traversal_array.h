@@ -1,4 +1,4 @@
-// The arrays traversal reads at random (a built tree's nodes and leaf triangles, the shading
+// The arrays traversal reads at random (a built tree's nodes and leaf blocks, the shading
 // copy of the triangle vertices): vectors whose memory is aligned to and advised for
 // transparent huge pages once it spans one, because random rays touch the whole node array and
 // with 4 KiB pages nearly every node fetch also misses the TLB. A tree is built straight into

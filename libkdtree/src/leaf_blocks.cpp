@@ -15,26 +15,55 @@ namespace kdray {
 namespace detail {
 namespace {
 
-// A page's distinct corners are its distinct scene vertices (corners of equal position but
-// different vertices are stored twice; meshes rarely have them), found by a linear search: a
-// page holds at most 768, and a leaf usually fewer than ten.
-uint32_t corner_number(std::vector<uint32_t>& page_vertices, uint32_t vertex) {
-  const auto number = static_cast<uint32_t>(std::find(page_vertices.begin(), page_vertices.end(), vertex) -
-                                            page_vertices.begin());
-  if (number == page_vertices.size()) page_vertices.push_back(vertex);
-  return number;
-}
+// A page's distinct corners: its distinct scene vertices in the order its triangles first meet
+// them (corners of equal position but different vertices are stored twice; meshes rarely have
+// them). Found through a small open-addressed table rather than by searching the corners so
+// far, which costs tens of comparisons a corner once a leaf holds a few triangles; the table
+// is emptied by a new stamp, not cleared.
+class PageCorners {
+ public:
+  void clear() {
+    vertices.clear();
+    if (++stamp_ == 0) {  // after 2^32 pages: stamps from the last round could match
+      std::fill(std::begin(stamps_), std::end(stamps_), 0u);
+      stamp_ = 1;
+    }
+  }
 
-// Numbers the corners of the leaf's triangles [page_start, page_end), one page: page_vertices
-// becomes the page's distinct vertices and, where `numbers` is given, numbers[i] triangle i's
-// corner-number word.
+  // The vertex's corner number on this page, the next one when it is new.
+  uint32_t number(uint32_t vertex) {
+    uint32_t slot = (vertex * 0x9E3779B1u) >> (32 - kSlotBits);
+    while (stamps_[slot] == stamp_) {
+      if (vertices[numbers_[slot]] == vertex) return numbers_[slot];
+      slot = (slot + 1) & (kSlots - 1);
+    }
+    stamps_[slot] = stamp_;
+    numbers_[slot] = static_cast<uint16_t>(vertices.size());
+    vertices.push_back(vertex);
+    return numbers_[slot];
+  }
+
+  std::vector<uint32_t> vertices;  // the page's distinct vertices, by corner number
+
+ private:
+  // At least twice a page's most corners (3 KD_LEAF_PAGE_TRIANGLES), so probes stay short.
+  static constexpr uint32_t kSlotBits = 11;
+  static constexpr uint32_t kSlots = 1u << kSlotBits;
+  static_assert(kSlots >= 2 * 3 * KD_LEAF_PAGE_TRIANGLES, "the corner table is too small for a page");
+  uint32_t stamps_[kSlots] = {};
+  uint16_t numbers_[kSlots];
+  uint32_t stamp_ = 0;
+};
+
+// Numbers the corners of the leaf's triangles [page_start, page_end), one page: `corners`
+// becomes the page's and, where `numbers` is given, numbers[i] triangle i's corner-number word.
 void number_page(const Scene& scene, const uint32_t* triangles, uint32_t page_start, uint32_t page_end,
-                 std::vector<uint32_t>& page_vertices, uint32_t* numbers) {
-  page_vertices.clear();
+                 PageCorners& corners, uint32_t* numbers) {
+  corners.clear();
   for (uint32_t i = page_start; i < page_end; ++i) {
     uint32_t word = 0;
     for (uint32_t corner = 0; corner < 3; ++corner)
-      word |= corner_number(page_vertices, scene.indices[3 * size_t{triangles[i]} + corner])
+      word |= corners.number(scene.indices[3 * size_t{triangles[i]} + corner])
               << (KD_LEAF_CORNER_BITS * corner);
     if (numbers) numbers[i] = word;
   }
@@ -43,24 +72,24 @@ void number_page(const Scene& scene, const uint32_t* triangles, uint32_t page_st
 // The size in words of the block of the leaf of `count` triangles `triangles[0, count)`: every
 // page but the last fills its KD_LEAF_PAGE_CORNERS corners.
 uint64_t block_words(const Scene& scene, const uint32_t* triangles, uint32_t count,
-                     std::vector<uint32_t>& page_vertices) {
+                     PageCorners& corners) {
   const uint32_t last_page = (count - 1) / KD_LEAF_PAGE_TRIANGLES;
-  number_page(scene, triangles, last_page * KD_LEAF_PAGE_TRIANGLES, count, page_vertices, nullptr);
-  return 2 * uint64_t{count} + 3 * (uint64_t{KD_LEAF_PAGE_CORNERS} * last_page + page_vertices.size());
+  number_page(scene, triangles, last_page * KD_LEAF_PAGE_TRIANGLES, count, corners, nullptr);
+  return 2 * uint64_t{count} + 3 * (uint64_t{KD_LEAF_PAGE_CORNERS} * last_page + corners.vertices.size());
 }
 
 // The block itself, `size` words (block_words), to out; the padding of full pages is zeros.
 void make_block(const Scene& scene, const uint32_t* triangles, uint32_t count, uint64_t size,
-                std::vector<uint32_t>& page_vertices, std::vector<uint32_t>& numbers, char* out) {
+                PageCorners& corners, std::vector<uint32_t>& numbers, char* out) {
   std::memset(out, 0, 4 * size);
   std::memcpy(out, triangles, 4 * size_t{count});
   numbers.resize(count);
   for (uint32_t page_start = 0; page_start < count; page_start += KD_LEAF_PAGE_TRIANGLES) {
-    number_page(scene, triangles, page_start, std::min(count, page_start + KD_LEAF_PAGE_TRIANGLES), page_vertices,
+    number_page(scene, triangles, page_start, std::min(count, page_start + KD_LEAF_PAGE_TRIANGLES), corners,
                 numbers.data());
     const uint64_t page_first = 2 * uint64_t{count} + 3 * uint64_t{KD_LEAF_PAGE_CORNERS} * (page_start / KD_LEAF_PAGE_TRIANGLES);
-    for (size_t k = 0; k < page_vertices.size(); ++k)
-      std::memcpy(out + 4 * (page_first + 3 * k), &scene.positions[page_vertices[k]], 3 * sizeof(float));
+    for (size_t k = 0; k < corners.vertices.size(); ++k)
+      std::memcpy(out + 4 * (page_first + 3 * k), &scene.positions[corners.vertices[k]], 3 * sizeof(float));
   }
   std::memcpy(out + 4 * size_t{count}, numbers.data(), 4 * size_t{count});
 }
@@ -77,9 +106,9 @@ LeafBlockPlan plan_leaf_blocks(const Scene& scene, TraversalArray<KdNode>& nodes
   const size_t leaves = plan.counts.size();
   plan.words.resize(leaves + 1);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves, 1024), [&](const tbb::blocked_range<size_t>& range) {
-    std::vector<uint32_t> page_vertices;
+    PageCorners corners;
     for (size_t leaf = range.begin(); leaf < range.end(); ++leaf)
-      plan.words[leaf + 1] = block_words(scene, triangles + plan.entries[leaf], plan.counts[leaf], page_vertices);
+      plan.words[leaf + 1] = block_words(scene, triangles + plan.entries[leaf], plan.counts[leaf], corners);
   });
   for (size_t leaf = 0; leaf < leaves; ++leaf) plan.words[leaf + 1] += plan.words[leaf];
   if (plan.size_words() > UINT32_MAX)
@@ -105,7 +134,8 @@ void leaf_block_bytes(const Scene& scene, const uint32_t* triangles, const LeafB
   // A block wholly inside the range is made where it goes; one the range cuts, in a scratch
   // block first.
   struct Scratch {
-    std::vector<uint32_t> page_vertices, numbers;
+    PageCorners corners;
+    std::vector<uint32_t> numbers;
     std::vector<char> block;
   };
   tbb::enumerable_thread_specific<Scratch> scratches;
@@ -116,12 +146,12 @@ void leaf_block_bytes(const Scene& scene, const uint32_t* triangles, const LeafB
       const uint64_t size = words[leaf + 1] - words[leaf];
       const uint32_t* leaf_triangles = triangles + plan.entries[leaf];
       if (block_begin >= begin && block_end <= end) {
-        make_block(scene, leaf_triangles, plan.counts[leaf], size, scratch.page_vertices, scratch.numbers,
+        make_block(scene, leaf_triangles, plan.counts[leaf], size, scratch.corners, scratch.numbers,
                    out + (block_begin - begin));
         continue;
       }
       scratch.block.resize(4 * size);
-      make_block(scene, leaf_triangles, plan.counts[leaf], size, scratch.page_vertices, scratch.numbers,
+      make_block(scene, leaf_triangles, plan.counts[leaf], size, scratch.corners, scratch.numbers,
                  scratch.block.data());
       const uint64_t from = std::max(begin, block_begin), to = std::min(end, block_end);
       std::memcpy(out + (from - begin), scratch.block.data() + (from - block_begin), to - from);

@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
     }
     const kdray::Scene scene = kdray::read_scene(argv[1]);
     const kdray::KdTree tree = kdray::read_tree(argv[2]);
-    kdray::check_tree_matches_scene(tree, argv[2], scene, argv[1]);
+    kdray::check_tree_matches_scene(tree, argv[2], kdray::geometry_of(scene), argv[1]);
 
     kdray::RenderStats stats_a, stats_b;
     const kdray::Film film_a = kdray::render(scene, tree, settings, a, &stats_a);

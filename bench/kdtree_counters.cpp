@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
   try {
     const kdray::Scene scene = kdray::read_scene(argv[1]);
     const kdray::KdTree tree = kdray::read_tree(argv[2]);
-    kdray::check_tree_matches_scene(tree, argv[2], scene, argv[1]);
+    kdray::check_tree_matches_scene(tree, argv[2], kdray::geometry_of(scene), argv[1]);
     const size_t random_count = argc == 4 ? std::strtoull(argv[3], nullptr, 10) : 200000;
     // Leaves by triangle count (0, 1, 2, 3, 4 or more): what a compact leaf encoding would save.
     uint64_t leaves_by_count[5] = {};

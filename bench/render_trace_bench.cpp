@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     size_t count = argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 1000000;
     kdray::Scene scene = kdray::read_scene(argv[1]);
     kdray::KdTree tree = kdray::read_tree(argv[2]);
-    kdray::check_tree_matches_scene(tree, argv[2], scene, argv[1]);
+    kdray::check_tree_matches_scene(tree, argv[2], kdray::geometry_of(scene), argv[1]);
     uint32_t side = static_cast<uint32_t>(std::sqrt(double(count)));
     double camera = median_mrays(tree, kdray::camera_rays(scene, side, side));
     double random = median_mrays(tree, kdray::random_rays(tree.bounds, count, 1));

@@ -225,13 +225,21 @@ SceneAndTree read_scene_and_tree(const std::string& scene_path, const std::strin
   if (cache_folder.empty()) {
     // Two independent files: read at once, each with its checksum beside its own checks.
     tbb::parallel_invoke([&] { read.scene = read_scene(scene_path); }, [&] { read.tree = read_tree(tree_path); });
-    check_tree_matches_scene(read.tree, tree_path, read.scene, scene_path);
+    check_tree_matches_scene(read.tree, tree_path, geometry_of(read.scene), scene_path);
     return read;
   }
   read.scene = read_scene(scene_path);
   TreeCache cache(cache_folder, warn);
   read.tree = cached_tree(cache, read.scene, scene_path, BuildSettings{}).tree;
   return read;
+}
+
+KdTree read_tree_for_scene(const std::string& scene_path, const std::string& tree_path) {
+  SceneGeometry geometry;
+  KdTree tree;
+  tbb::parallel_invoke([&] { geometry = read_scene_geometry(scene_path); }, [&] { tree = read_tree(tree_path); });
+  check_tree_matches_scene(tree, tree_path, geometry, scene_path);
+  return tree;
 }
 
 }  // namespace kdray

@@ -343,14 +343,14 @@ KdTree read_tree(const std::string& path) {
   return tree;
 }
 
-void check_tree_matches_scene(const KdTree& tree, const std::string& tree_path, const Scene& scene,
+void check_tree_matches_scene(const KdTree& tree, const std::string& tree_path, const SceneGeometry& scene,
                               const std::string& scene_path) {
   if (tree.geometry_hash != scene.geometry_hash)
     throw Error(tree_path, "stale tree: built for geometry " + hash_hex(tree.geometry_hash) + ", but " + scene_path +
                                " has geometry " + hash_hex(scene.geometry_hash) + ": rebuild with kdbuild");
-  if (tree.stats.triangles != scene.triangle_count())
+  if (tree.stats.triangles != scene.triangles)
     throw Error(tree_path, "tree is for " + std::to_string(tree.stats.triangles) + " triangles, but " + scene_path +
-                               " has " + std::to_string(scene.triangle_count()));
+                               " has " + std::to_string(scene.triangles));
 }
 
 }  // namespace kdray

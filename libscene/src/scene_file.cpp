@@ -163,6 +163,32 @@ class SectionCollector {
   std::vector<bool> seen_ = std::vector<bool>(kSceneTangents + 1, false);
 };
 
+// Checks the sections a file has (`has`) against what every scene needs and its header's flags,
+// and the header's own fields (the checksum covers the payload only).
+template <typename Has>
+void check_section_set(const std::string& path, const FileHeader& header, const Has& has) {
+  for (uint32_t required : {kScenePositions, kSceneIndices, kSceneMaterialIds, kSceneMaterials, kSceneCameras, kSceneInfo})
+    if (!has(required)) throw Error(path, "required section " + std::to_string(required) + " is missing");
+  const uint64_t flags = header.flags;
+  if (flags & ~kKnownFlags) throw Error(path, "unknown flag bits in the header");
+  const std::pair<uint64_t, uint32_t> optional_sections[] = {
+      {kSceneHasNormals, kSceneNormals}, {kSceneHasUVs, kSceneUVs},
+      {kSceneHasTextures, kSceneTextures}, {kSceneHasEmissive, kSceneEmissive}, {kSceneHasLights, kSceneLights},
+      {kSceneHasTangents, kSceneTangents}};
+  for (const auto& [flag, section] : optional_sections)
+    if (bool(flags & flag) != has(section))
+      throw Error(path, "header flags disagree with the sections present (section " + std::to_string(section) + ")");
+  if (header.reserved0 != 0 || header.reserved1 != 0) throw Error(path, "reserved header fields are not zero");
+}
+
+// The header's hash is outside the checksum; its copy in scene info is inside. Recomputing it
+// would cost another pass over the arrays, and the checksummed copy is what was written.
+void check_content_hash(const std::string& path, const FileHeader& header, const encoding::SceneInfo& info) {
+  if (info.content_hash != header.content_hash)
+    throw Error(path, "the content hash in the header (" + hash_hex(header.content_hash) +
+                          ") does not match the one recorded in the scene info (" + hash_hex(info.content_hash) + ")");
+}
+
 // The scene of a mapped file, copied out of it and checked throughout.
 Scene scene_of(const MappedContainer& file, const std::string& path) {
   Scene scene;
@@ -170,18 +196,7 @@ Scene scene_of(const MappedContainer& file, const std::string& path) {
   const ContainerContents& contents = file.contents;
   for (const format::SectionEntry& section : contents.sections)
     collector.take(section.id, file.bytes + section.offset, section.size);
-
-  for (uint32_t required : {kScenePositions, kSceneIndices, kSceneMaterialIds, kSceneMaterials, kSceneCameras, kSceneInfo})
-    if (!collector.has(required)) throw Error(path, "required section " + std::to_string(required) + " is missing");
-  const uint64_t flags = contents.header.flags;
-  if (flags & ~kKnownFlags) throw Error(path, "unknown flag bits in the header");
-  const std::pair<uint64_t, uint32_t> optional_sections[] = {
-      {kSceneHasNormals, kSceneNormals}, {kSceneHasUVs, kSceneUVs},
-      {kSceneHasTextures, kSceneTextures}, {kSceneHasEmissive, kSceneEmissive}, {kSceneHasLights, kSceneLights},
-      {kSceneHasTangents, kSceneTangents}};
-  for (const auto& [flag, section] : optional_sections)
-    if (bool(flags & flag) != collector.has(section))
-      throw Error(path, "header flags disagree with the sections present (section " + std::to_string(section) + ")");
+  check_section_set(path, contents.header, [&](uint32_t id) { return collector.has(id); });
 
   scene.materials = encoding::decode_materials(path, collector.materials, contents.header.version);
   scene.cameras = encoding::decode_cameras(path, collector.cameras, contents.header.version);
@@ -195,13 +210,7 @@ Scene scene_of(const MappedContainer& file, const std::string& path) {
   // Files older than version 5 have no tangents: computed here, on the vertices the file's
   // hashes and k-d tree describe.
   if (scene.tangents.empty()) scene.tangents = tangents_on_vertices(scene);
-  // The checksum covers the payload only: the header's own fields are checked here.
-  if (contents.header.reserved0 != 0 || contents.header.reserved1 != 0) throw Error(path, "reserved header fields are not zero");
-  // The header's hash is outside the checksum; its copy in scene info is inside. Recomputing
-  // it would cost another pass over the arrays, and the checksummed copy is what was written.
-  if (info.content_hash != contents.header.content_hash)
-    throw Error(path, "the content hash in the header (" + hash_hex(contents.header.content_hash) +
-                          ") does not match the one recorded in the scene info (" + hash_hex(info.content_hash) + ")");
+  check_content_hash(path, contents.header, info);
   scene.content_hash = info.content_hash;
   // Older files did not record it: one pass over the two arrays.
   scene.geometry_hash = contents.header.version >= kSceneGeometryHashVersion ? info.geometry_hash
@@ -246,6 +255,38 @@ Scene read_scene(const std::string& path) {
     scene = scene_of(file, path);
   });
   return scene;
+}
+
+SceneGeometry read_scene_geometry(const std::string& path) {
+  SceneGeometry geometry;
+  bool whole_scene_needed = false;
+  map_container(path, kSceneMagic, kSceneVersion, "kdscene", [&](const MappedContainer& file) {
+    const ContainerContents& contents = file.contents;
+    std::vector<bool> seen(kSceneTangents + 1, false);
+    std::vector<char> info_bytes;
+    for (const format::SectionEntry& section : contents.sections) {
+      if (section.id >= seen.size()) continue;  // a section a newer writer added
+      if (seen[section.id]) throw Error(path, "section " + std::to_string(section.id) + " appears twice");
+      seen[section.id] = true;
+      if (section.id == kSceneIndices) {
+        if (section.size % 12 != 0)
+          throw Error(path, "indices section size " + std::to_string(section.size) + " is not a multiple of 12");
+        geometry.triangles = section.size / 12;
+      }
+      if (section.id == kSceneInfo)
+        info_bytes.assign(file.bytes + section.offset, file.bytes + section.offset + section.size);
+    }
+    check_section_set(path, contents.header, [&](uint32_t id) { return bool(seen[id]); });
+    const encoding::SceneInfo info = encoding::decode_scene_info(path, info_bytes, contents.header.version);
+    check_content_hash(path, contents.header, info);
+    whole_scene_needed = contents.header.version < kSceneGeometryHashVersion;
+    geometry.geometry_hash = info.geometry_hash;
+  });
+  if (whole_scene_needed) {  // no hash recorded: computed from the arrays, which are read for it
+    const Scene scene = read_scene(path);
+    geometry = {scene.geometry_hash, scene.triangle_count()};
+  }
+  return geometry;
 }
 
 SceneFileSummary peek_scene(const std::string& path) {

@@ -64,7 +64,7 @@ TEST_F(KdCli, KdbuildWritesATreeAndReportsJson) {
                           "references_per_triangle", "build_seconds", "peak_memory_mib", "nodes", "tree_bytes",
                           "phase_seconds"})
     EXPECT_TRUE(report.contains(key)) << key;
-  EXPECT_NO_THROW(check_tree_matches_scene(tree, "room.kdtree", scene_, "room.kdscene"));
+  EXPECT_NO_THROW(check_tree_matches_scene(tree, "room.kdtree", geometry_of(scene_), "room.kdscene"));
 
   const ToolRun human = run("kdbuild", path("room.kdscene") + " " + path("room2.kdtree") + " --kt 30");
   ASSERT_EQ(human.exit_code, 0) << human.err;
@@ -184,6 +184,11 @@ TEST_F(KdCli, KdtraceRejectsStaleTreesAndBadRayFiles) {
   EXPECT_EQ(stale.exit_code, 1);
   EXPECT_NE(stale.err.find("stale tree"), std::string::npos) << stale.err;
   EXPECT_NE(stale.err.find("rebuild with kdbuild"), std::string::npos) << stale.err;
+  // Camera rays read the scene's arrays (random rays only its geometry's identity): refused the same way.
+  const ToolRun stale_camera =
+      run("kdtrace", path("room.kdscene") + " " + path("other.kdtree") + " --generate camera --width 4 --height 4");
+  EXPECT_EQ(stale_camera.exit_code, 1);
+  EXPECT_NE(stale_camera.err.find("stale tree"), std::string::npos) << stale_camera.err;
 
   ASSERT_EQ(run("kdbuild", path("room.kdscene") + " " + path("room.kdtree") + " --quiet").exit_code, 0);
   std::ofstream(path("odd.bin")) << "12345";

@@ -101,7 +101,7 @@ TEST_F(TreeCacheTest, AMaterialChangeHitsAndTheTreeServesTheNewScene) {
   recoloured.content_hash = compute_content_hash(recoloured);
   const CachedTree again = cached_tree(trees, recoloured, path("recoloured.kdscene"), BuildSettings{});
   EXPECT_TRUE(again.hit);
-  EXPECT_NO_THROW(check_tree_matches_scene(again.tree, again.entry, recoloured, "recoloured.kdscene"));
+  EXPECT_NO_THROW(check_tree_matches_scene(again.tree, again.entry, geometry_of(recoloured), "recoloured.kdscene"));
   ASSERT_EQ(trees.entries().size(), 1u);
   EXPECT_EQ(trees.entries()[0].scenes.size(), 2u);
 }

@@ -67,7 +67,7 @@ TEST_F(KdTreeFile, RoundTripKeepsEverything) {
   EXPECT_EQ(back.stats.sah_cost, tree.stats.sah_cost);
   EXPECT_EQ(back.stats.leaves, tree.stats.leaves);
   EXPECT_EQ(back.bounds.max.y, tree.bounds.max.y);
-  EXPECT_NO_THROW(check_tree_matches_scene(back, "a.kdtree", scene_, "s.kdscene"));
+  EXPECT_NO_THROW(check_tree_matches_scene(back, "a.kdtree", geometry_of(scene_), "s.kdscene"));
 }
 
 // build_tree_file makes the leaf blocks as it writes them, a 2 MiB piece of the file at a time,
@@ -335,7 +335,7 @@ TEST_F(KdTreeFile, AKeyThatDoesNotMatchTheSettingsIsDamage) {
 TEST_F(KdTreeFile, StaleTreeNamesBothHashes) {
   const Scene other = test::icosphere_scene(2, {0, 0, 0}, 2);
   try {
-    check_tree_matches_scene(tree_, "t.kdtree", other, "other.kdscene");
+    check_tree_matches_scene(tree_, "t.kdtree", geometry_of(other), "other.kdscene");
     FAIL() << "a stale tree was accepted";
   } catch (const Error& error) {
     const std::string message = error.what();

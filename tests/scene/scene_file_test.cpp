@@ -93,6 +93,24 @@ TEST_F(SceneFile, PeekReportsFlagsAndHashWithoutLoading) {
   EXPECT_EQ(summary.file_size, std::filesystem::file_size(path("quad.kdscene")));
 }
 
+TEST_F(SceneFile, GeometryIsWhatTheWholeSceneHas) {
+  const Scene original = test::make_quad_scene(true, true, true);
+  write_scene(path("quad.kdscene"), original);
+  const SceneGeometry geometry = read_scene_geometry(path("quad.kdscene"));
+  EXPECT_EQ(geometry.geometry_hash, read_scene(path("quad.kdscene")).geometry_hash);
+  EXPECT_EQ(geometry.geometry_hash, compute_geometry_hash(original));
+  EXPECT_EQ(geometry.triangles, original.triangle_count());
+  // Files older than version 4 record no geometry hash: it is computed from their arrays.
+  for (const char* fixture : {"version-2-materials.kdscene", "version-4-normal-map.kdscene"}) {
+    const std::string old_file = std::string(KDRAY_SOURCE_DIR) + "/tests/scene/fixtures/" + fixture;
+    SCOPED_TRACE(old_file);
+    const Scene whole = read_scene(old_file);
+    const SceneGeometry old_geometry = read_scene_geometry(old_file);
+    EXPECT_EQ(old_geometry.geometry_hash, whole.geometry_hash);
+    EXPECT_EQ(old_geometry.triangles, whole.triangle_count());
+  }
+}
+
 TEST_F(SceneFile, ContentHashChangesWithGeometryMaterialsAndCameras) {
   const Scene original = test::make_quad_scene(false, false, false);
   Scene moved = original;

@@ -26,12 +26,16 @@ int main(int argc, char** argv) {
     const kdray::tool::DeviceKind device = kdtrace::checked_device(o);
     if (device == kdray::tool::DeviceKind::List) return kdray::tool::list_opencl_devices(o.flags.json);
     const bool host = device == kdray::tool::DeviceKind::Host;
-    const kdray::SceneAndTree read = kdray::read_scene_and_tree(
-        o.scene_path, o.tree_path, o.cache_folder,
-        [](const std::string& line) { kdray::tool::print_warning("kdtrace", line); });
-    const kdray::Scene& scene = read.scene;
+    kdray::SceneAndTree read;
+    if (kdtrace::needs_scene_arrays(o))
+      read = kdray::read_scene_and_tree(o.scene_path, o.tree_path, o.cache_folder, [](const std::string& line) {
+        kdray::tool::print_warning("kdtrace", line);
+      });
+    else
+      read.tree = kdray::read_tree_for_scene(o.scene_path, o.tree_path);
     const kdray::KdTree& tree = read.tree;
-    const std::vector<RayRecord> rays = kdtrace::rays_to_trace(o, scene, tree);
+    const std::vector<RayRecord> rays =
+        kdtrace::rays_to_trace(o, kdtrace::needs_scene_arrays(o) ? &read.scene : nullptr, tree);
     const kdray::TraceOptions options = kdtrace::traversal_options(o, host);
     // The host traversal's set-up (the empty-leaf bits), done once for a host run and for the
     // counting pass of --json.

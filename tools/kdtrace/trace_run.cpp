@@ -8,12 +8,16 @@
 
 namespace kdtrace {
 
-std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene& scene, const kdray::KdTree& tree) {
+bool needs_scene_arrays(const Options& o) {
+  return !o.cache_folder.empty() || (o.rays_path.empty() && o.generate != "random");
+}
+
+std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene* scene, const kdray::KdTree& tree) {
   std::vector<RayRecord> rays;
   if (!o.rays_path.empty()) rays = kdray::read_rays(o.rays_path);
-  else if (o.generate == "camera") rays = kdray::camera_rays(scene, o.width, o.height);
+  else if (o.generate == "camera") rays = kdray::camera_rays(*scene, o.width, o.height);
   else if (o.generate == "random") rays = kdray::random_rays(tree.bounds, o.count, o.seed);
-  else rays = kdray::hard_case_rays(scene, tree, o.count, o.seed);
+  else rays = kdray::hard_case_rays(*scene, tree, o.count, o.seed);
   if (!o.write_rays_path.empty()) kdray::write_rays(o.write_rays_path, rays);
   return rays;
 }

@@ -22,8 +22,14 @@ struct TraceRun {
   kdray::TraceOpenClStats opencl;
 };
 
-// The rays of --rays, or the generated set of --generate (also written to --write-rays).
-std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene& scene, const kdray::KdTree& tree);
+// Whether the run reads the scene's arrays: a tree cache builds from them on a miss, camera rays
+// frame the scene and hard-case rays are made from its triangles. Otherwise the tree, which holds
+// the triangles' corners, is all the tracing reads, and the scene is only checked to match it.
+bool needs_scene_arrays(const Options& o);
+
+// The rays of --rays, or the generated set of --generate (also written to --write-rays); `scene`
+// may be null unless needs_scene_arrays.
+std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene* scene, const kdray::KdTree& tree);
 
 // On the host with `host_traversal` (prepared beforehand: its set-up is not part of the rate),
 // else on the OpenCL device (opencl_selection).

@@ -129,14 +129,14 @@ void write_tree(const std::string& path, const KdTree& tree);
 
 // Reads and validates a .kdtree: checksum, then every node, child and leaf range, so that
 // traversal can trust it. The tree's arrays view the mapped file (TreeArray). Throws
-// kdray::Error naming the file; trees of versions before 3 are refused ("rebuild").
+// kdray::Error naming the file; trees of versions before 4 are refused ("rebuild").
 KdTree read_tree(const std::string& path);
 
 // Throws kdray::Error when the tree was built for other geometry ("stale tree: built for
 // geometry <hash>, but <scene path> has geometry <hash>: rebuild with kdbuild") or is for
-// another triangle count (its triangle indices were
-// checked against its own count when it was read or built).
-void check_tree_matches_scene(const KdTree& tree, const std::string& tree_path, const Scene& scene,
+// another triangle count (its triangle indices were checked against its own count when it was
+// read or built). The scene's geometry: geometry_of(scene), or read_scene_geometry(scene_path).
+void check_tree_matches_scene(const KdTree& tree, const std::string& tree_path, const SceneGeometry& scene,
                               const std::string& scene_path);
 
 }  // namespace kdray

@@ -96,4 +96,9 @@ struct SceneAndTree {
 SceneAndTree read_scene_and_tree(const std::string& scene_path, const std::string& tree_path,
                                  const std::string& cache_folder, const CacheWarning& warn);
 
+// The tree at `tree_path` for a tool that traces it without the scene's arrays (the tree holds
+// its triangles' corners): checked against the geometry of the scene at `scene_path`
+// (read_scene_geometry), both files read at once.
+KdTree read_tree_for_scene(const std::string& scene_path, const std::string& tree_path);
+
 }  // namespace kdray

@@ -145,6 +145,13 @@ struct Scene {
   size_t triangle_count() const { return indices.size() / 3; }
 };
 
+// What a tree built for a scene records of it: the geometry hash and the triangle count.
+struct SceneGeometry {
+  uint64_t geometry_hash = 0;
+  uint64_t triangles = 0;
+};
+inline SceneGeometry geometry_of(const Scene& scene) { return {scene.geometry_hash, scene.triangle_count()}; }
+
 Bounds scene_bounds(const Scene& scene);
 
 // The camera for a scene that has none (every tool uses this one): on the +Z side of the

@@ -8,12 +8,14 @@
 #include <xxh_x86dispatch.h>
 
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 #include <exception>
 #include <memory>
 
@@ -172,17 +174,37 @@ void write_container(const std::string& path, const ContainerHeaderInfo& info,
       }
     }
   };
-  // A produced section's bytes are made into this buffer at their offset in the piece, which
-  // is written before the next piece is begun.
-  std::vector<char> made;
+  // A produced section's bytes are made a piece's part at a time into one of two buffers of
+  // its own, at their offset in the piece: the next part is made while this one is hashed and
+  // written (a write into pages the page cache has not held takes as long as making them). A
+  // buffer is made into again two parts later, when the piece that viewed it has been written;
+  // a section's last part may share its piece with what follows, so its buffers are kept.
+  std::deque<std::vector<char>> made_buffers;
   auto put_made = [&](const SectionData& section) {
-    if (made.empty()) made.resize(kPiece);
-    for (uint64_t begin = 0; begin < section.size;) {
-      const uint64_t part = std::min(section.size - begin, kPiece - position % kPiece);
-      char* out = made.data() + position % kPiece;
-      section.produce(begin, begin + part, out);
-      put(out, part, true);
-      begin += part;
+    std::vector<char>* made[2] = {&made_buffers.emplace_back(kPiece), &made_buffers.emplace_back(kPiece)};
+    auto part_at = [&](uint64_t begin, uint64_t at) { return std::min(section.size - begin, kPiece - at % kPiece); };
+    int buffer = 0;
+    uint64_t begin = 0;
+    if (section.size > 0) section.produce(0, part_at(0, position), made[0]->data() + position % kPiece);
+    while (begin < section.size) {
+      const uint64_t part = part_at(begin, position);
+      char* out = made[buffer]->data() + position % kPiece;
+      const uint64_t next = begin + part, next_position = position + part;
+      tbb::task_group making;
+      if (next < section.size)
+        making.run([&, next, next_position, buffer] {
+          section.produce(next, next + part_at(next, next_position),
+                          made[1 - buffer]->data() + next_position % kPiece);
+        });
+      try {
+        put(out, part, true);
+      } catch (...) {
+        making.wait();
+        throw;
+      }
+      making.wait();
+      begin = next;
+      buffer = 1 - buffer;
     }
   };
   put(&header, sizeof header, false);

@@ -22,7 +22,9 @@ done
 : > "$WORK/before.walls"
 : > "$WORK/after.walls"
 for run in $(seq "$RUNS"); do
-  for side in before after; do
+  sides="before after"
+  ((run % 2 == 0)) && sides="after before"  # A B, B A, ...: no side always runs first
+  for side in $sides; do
     build=$BEFORE && [ "$side" = after ] && build=$BUILD
     start=$(date +%s.%N)
     "$build/tools/kdrender/kdrender" "$WORK/cornell.kdscene" "$WORK/cornell.kdtree" -o "$WORK/$side-$run.exr" $VIEW \

@@ -9,7 +9,8 @@
 # MESH: corpus paths relative to $CORPUS (default: the dragon, bunny_sub2 and dragons_4x4), or
 # absolute paths (the meshes of bench/make_meshes.py, say).
 # BASELINE: another kdbuild (an earlier commit's) measured the same way, its builds interleaved
-# run by run with this build's on a shared machine (modes base-binned and base-exact); the last
+# run by run with this build's on a shared machine (modes base-binned and base-exact; the modes'
+# order is reversed every other run); the last
 # column says whether its tree has the same bytes as this build's in the same mode.
 set -euo pipefail
 . "$(dirname "$0")/common.sh"
@@ -40,7 +41,15 @@ for mesh in "$@"; do
   [[ -f "$scene" ]] || "$KDCONVERT" "$(corpus_file "$mesh")" "$scene" --quiet > /dev/null
   for mode in "${modes[@]}"; do : > "$work/$name.$mode.build.jsonl"; done
   for ((run = 0; run < runs; ++run)); do
-    for mode in "${modes[@]}"; do
+    # Every other run takes the modes in reverse order (A B, B A, ...): on the VMs measured, a
+    # process writing a tree is slow or fast by turns, so a fixed order gives one mode every
+    # slow write (bench/LOG.md, "The load without a per-leaf wait…").
+    order=("${modes[@]}")
+    if ((run % 2 == 1)); then
+      order=()
+      for ((m = ${#modes[@]} - 1; m >= 0; --m)); do order+=("${modes[m]}"); done
+    fi
+    for mode in "${order[@]}"; do
       flags=()
       [[ "$mode" == *exact ]] && flags=(--exact)
       kdbuild="$KDBUILD"

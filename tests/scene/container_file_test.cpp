@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -57,7 +58,7 @@ TEST_F(ContainerWriter, MadeSectionsGiveTheBytesOfWholeOnes) {
   const MappedContainer read = map_container(path("made.bin"), kMagic, 1, "test", {});
   ASSERT_EQ(read.contents.sections.size(), sizes.size());
   for (size_t s = 0; s < sizes.size(); ++s)
-    EXPECT_EQ(std::memcmp(read.bytes + read.contents.sections[s].offset, contents[s].data(), sizes[s]), 0) << s;
+    EXPECT_TRUE(std::equal(contents[s].begin(), contents[s].end(), read.bytes + read.contents.sections[s].offset)) << s;
 }
 
 TEST_F(ContainerWriter, AFailureWhileMakingLeavesNoFile) {

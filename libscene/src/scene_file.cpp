@@ -114,15 +114,20 @@ SectionData text_section(uint32_t id, const std::string& bytes) { return {id, by
 
 // Copies each section of a mapped file into the scene, sizing it from the section size
 // (already checked against the file size by the container reader). Copied from the mapping,
-// the arrays are written once, not zero-filled first.
+// the arrays are written once, not zero-filled first. With Sections::InfoOnly every section's
+// size is checked but only the scene info is copied (read_scene_geometry).
 class SectionCollector {
  public:
-  SectionCollector(const std::string& path, Scene& scene) : path_(path), scene_(scene) {}
+  enum class Sections { All, InfoOnly };
+  SectionCollector(const std::string& path, Scene& scene, Sections kept = Sections::All)
+      : path_(path), scene_(scene), kept_(kept) {}
 
   void take(uint32_t id, const char* bytes, uint64_t size) {
     if (id >= seen_.size()) return;  // a section a newer writer added: not ours to read
     if (seen_[id]) throw Error(path_, "section " + std::to_string(id) + " appears twice");
     seen_[id] = true;
+    keep_ = kept_ == Sections::All || id == kSceneInfo;
+    if (id == kSceneIndices) triangles = size / 12;
     switch (id) {
       case kScenePositions: return copy(scene_.positions, bytes, size, sizeof(Vec3), "positions");
       case kSceneIndices: return copy(scene_.indices, bytes, size, 12, "indices");
@@ -143,6 +148,7 @@ class SectionCollector {
   bool has(uint32_t id) const { return seen_[id]; }
 
   std::vector<char> materials, cameras, textures, info, lights;
+  uint64_t triangles = 0;  // of the indices section
 
  private:
   template <typename T>
@@ -150,6 +156,7 @@ class SectionCollector {
     if (size % unit != 0)
       throw Error(path_, std::string(what) + " section size " + std::to_string(size) + " is not a multiple of " +
                              std::to_string(unit));
+    if (!keep_) return;
     const T* first = reinterpret_cast<const T*>(bytes);
     const size_t count = size / sizeof(T);
     // A million-triangle scene's arrays are thousands of 4 KiB pages, each a fault when filled.
@@ -160,6 +167,8 @@ class SectionCollector {
 
   std::string path_;
   Scene& scene_;
+  const Sections kept_;
+  bool keep_ = true;  // whether the section being taken is copied
   std::vector<bool> seen_ = std::vector<bool>(kSceneTangents + 1, false);
 };
 
@@ -262,29 +271,19 @@ SceneGeometry read_scene_geometry(const std::string& path) {
   bool whole_scene_needed = false;
   map_container(path, kSceneMagic, kSceneVersion, "kdscene", [&](const MappedContainer& file) {
     const ContainerContents& contents = file.contents;
-    std::vector<bool> seen(kSceneTangents + 1, false);
-    std::vector<char> info_bytes;
-    for (const format::SectionEntry& section : contents.sections) {
-      if (section.id >= seen.size()) continue;  // a section a newer writer added
-      if (seen[section.id]) throw Error(path, "section " + std::to_string(section.id) + " appears twice");
-      seen[section.id] = true;
-      if (section.id == kSceneIndices) {
-        if (section.size % 12 != 0)
-          throw Error(path, "indices section size " + std::to_string(section.size) + " is not a multiple of 12");
-        geometry.triangles = section.size / 12;
-      }
-      if (section.id == kSceneInfo)
-        info_bytes.assign(file.bytes + section.offset, file.bytes + section.offset + section.size);
-    }
-    check_section_set(path, contents.header, [&](uint32_t id) { return bool(seen[id]); });
-    const encoding::SceneInfo info = encoding::decode_scene_info(path, info_bytes, contents.header.version);
+    Scene arrays_not_read;
+    SectionCollector collector(path, arrays_not_read, SectionCollector::Sections::InfoOnly);
+    for (const format::SectionEntry& section : contents.sections)
+      collector.take(section.id, file.bytes + section.offset, section.size);
+    check_section_set(path, contents.header, [&](uint32_t id) { return collector.has(id); });
+    const encoding::SceneInfo info = encoding::decode_scene_info(path, collector.info, contents.header.version);
     check_content_hash(path, contents.header, info);
     whole_scene_needed = contents.header.version < kSceneGeometryHashVersion;
-    geometry.geometry_hash = info.geometry_hash;
+    geometry = {info.geometry_hash, collector.triangles};
   });
   if (whole_scene_needed) {  // no hash recorded: computed from the arrays, which are read for it
     const Scene scene = read_scene(path);
-    geometry = {scene.geometry_hash, scene.triangle_count()};
+    geometry = geometry_of(scene);
   }
   return geometry;
 }

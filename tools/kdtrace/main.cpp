@@ -27,7 +27,8 @@ int main(int argc, char** argv) {
     if (device == kdray::tool::DeviceKind::List) return kdray::tool::list_opencl_devices(o.flags.json);
     const bool host = device == kdray::tool::DeviceKind::Host;
     kdray::SceneAndTree read;
-    if (kdtrace::needs_scene_arrays(o))
+    const bool scene_arrays = kdtrace::needs_scene_arrays(o);
+    if (scene_arrays)
       read = kdray::read_scene_and_tree(o.scene_path, o.tree_path, o.cache_folder, [](const std::string& line) {
         kdray::tool::print_warning("kdtrace", line);
       });
@@ -35,7 +36,7 @@ int main(int argc, char** argv) {
       read.tree = kdray::read_tree_for_scene(o.scene_path, o.tree_path);
     const kdray::KdTree& tree = read.tree;
     const std::vector<RayRecord> rays =
-        kdtrace::rays_to_trace(o, kdtrace::needs_scene_arrays(o) ? &read.scene : nullptr, tree);
+        kdtrace::rays_to_trace(o, scene_arrays ? &read.scene : nullptr, tree);
     const kdray::TraceOptions options = kdtrace::traversal_options(o, host);
     // The host traversal's set-up (the empty-leaf bits), done once for a host run and for the
     // counting pass of --json.

@@ -41,16 +41,22 @@ void count_ray(const kdray::Scene& scene, const kdray::KdTree& tree, const RayRe
   int size = 0;
   uint32_t node = 0;
   float best = record.tmax;
+  // An empty child is no node: it is visited as the empty leaf it stands for.
+  constexpr uint32_t kEmptyChild = UINT32_MAX;
+  auto node_at = [&](uint32_t index) { return index == kEmptyChild ? KdNode{0, KD_LEAF_TAG} : tree.nodes[index]; };
   for (;;) {
-    KdNode current = tree.nodes[node];
+    KdNode current = node_at(node);
     while (!kd_node_is_leaf(current)) {
       ++counters.steps;
       const uint32_t axis = kd_node_axis(current);
       const float split = kd_node_split(current);
       const float t_split = (split - ray.org[axis]) * ray.inv_dir[axis];
       const bool below_first = ray.org[axis] < split || (ray.org[axis] == split && ray.dir[axis] <= 0.0f);
-      const uint32_t near = below_first ? node + 1 : kd_node_far_child(current);
-      const uint32_t far = below_first ? kd_node_far_child(current) : node + 1;
+      auto child = [&](uint32_t above) {
+        return kd_node_child_empty(current, above) ? kEmptyChild : kd_node_child(current, node, above);
+      };
+      const uint32_t near = child(below_first ? 0 : 1);
+      const uint32_t far = child(below_first ? 1 : 0);
       if (t_split > t_max || t_split <= 0.0f) {
         node = near;
       } else if (t_split < t_min) {
@@ -60,7 +66,7 @@ void count_ray(const kdray::Scene& scene, const kdray::KdTree& tree, const RayRe
         node = near;
         t_max = t_split;
       }
-      current = tree.nodes[node];
+      current = node_at(node);
     }
     ++counters.leaves;
     const uint32_t first = kd_leaf_first(current), count = kd_leaf_count(current);
@@ -107,9 +113,9 @@ int main(int argc, char** argv) {
     kdray::check_tree_matches_scene(tree, argv[2], kdray::geometry_of(scene), argv[1]);
     const size_t random_count = argc == 4 ? std::strtoull(argv[3], nullptr, 10) : 200000;
     // Leaves by triangle count (0, 1, 2, 3, 4 or more): what a compact leaf encoding would save.
-    uint64_t leaves_by_count[5] = {};
+    uint64_t leaves_by_count[5] = {tree.stats.empty_leaves};
     for (const KdNode& node : tree.nodes)
-      if (kd_node_is_leaf(node)) ++leaves_by_count[std::min<uint32_t>(kd_leaf_count(node), 4)];
+      if (kd_node_is_leaf(node) && kd_leaf_count(node) > 0) ++leaves_by_count[std::min<uint32_t>(kd_leaf_count(node), 4)];
     const nlohmann::json out = {
         {"leaves_by_triangle_count", leaves_by_count},
         {"camera", count_rays(scene, tree, kdray::camera_rays(scene, 512, 384))},

@@ -32,9 +32,6 @@ typedef struct KdSceneView {
   KD_GLOBAL const KdNode* nodes;
   KD_GLOBAL const kd_u32* leaf_blocks; /* kd_types.h */
   float bounds_min[3], bounds_max[3];
-#ifdef KD_EMPTY_LEAF_BITS
-  KD_GLOBAL const kd_u32* empty_leaves; /* bit n % 32 of word n / 32: node n is an empty leaf */
-#endif
 #ifdef KD_TRAVERSAL_COUNTERS
   KdTraversalCounters* counters;
 #endif
@@ -43,10 +40,9 @@ typedef struct KdSceneView {
 /* The one way a KdSceneView is made, by the CPU builds and by every kernel, so a field added to
  * it is set everywhere. The root voxel comes as six floats because the callers hold it in
  * different forms and address spaces (float4 kernel arguments, __global parameter blocks, host
- * arrays). empty_leaves is kept only where KD_EMPTY_LEAF_BITS is defined (pass 0 elsewhere);
- * counters start null: a counting build points them at its own totals. */
-KD_INLINE KdSceneView kd_scene_view(KD_GLOBAL const KdNode* nodes, KD_GLOBAL const kd_u32* empty_leaves,
-                                    KD_GLOBAL const kd_u32* leaf_blocks, float min_x, float min_y, float min_z, float max_x, float max_y, float max_z) {
+ * arrays). Counters start null: a counting build points them at its own totals. */
+KD_INLINE KdSceneView kd_scene_view(KD_GLOBAL const KdNode* nodes, KD_GLOBAL const kd_u32* leaf_blocks, float min_x,
+                                    float min_y, float min_z, float max_x, float max_y, float max_z) {
   KdSceneView view;
   view.nodes = nodes;
   view.leaf_blocks = leaf_blocks;
@@ -56,29 +52,11 @@ KD_INLINE KdSceneView kd_scene_view(KD_GLOBAL const KdNode* nodes, KD_GLOBAL con
   view.bounds_max[0] = max_x;
   view.bounds_max[1] = max_y;
   view.bounds_max[2] = max_z;
-#ifdef KD_EMPTY_LEAF_BITS
-  view.empty_leaves = empty_leaves;
-#else
-  (void)empty_leaves;
-#endif
 #ifdef KD_TRAVERSAL_COUNTERS
   view.counters = 0;
 #endif
   return view;
 }
-
-/* Empty leaves are most of the leaves a ray meets. Where the host derives a bit per node at
- * load (KD_EMPTY_LEAF_BITS: 1/64 of the node array, so it stays in cache), the traversal skips
- * them without fetching their nodes, which for a far child is usually a cache miss. */
-#ifdef KD_EMPTY_LEAF_BITS
-#define KD_IS_EMPTY_LEAF(scene, index) (((scene)->empty_leaves[(index) >> 5] >> ((index) & 31u)) & 1u)
-#elif defined(KD_EMPTY_LEAF_NODES)
-/* Without the bits, the node itself says it (a leaf of no triangles): one load, which for the
- * near child is the one the descent makes next anyway. */
-#define KD_IS_EMPTY_LEAF(scene, index) ((scene)->nodes[(index)].header == KD_LEAF_TAG)
-#else
-#define KD_IS_EMPTY_LEAF(scene, index) 0
-#endif
 
 typedef struct KdStackEntry {
   kd_u32 node;

@@ -1,7 +1,6 @@
 /* Closest hits for a buffer of rays (kdtrace --device opencl, and the kernel-vs-CPU test).
  * Persistent threads: each work-item fetches its own batch of rays from a global atomic counter
  * until none are left. */
-#define KD_EMPTY_LEAF_BITS
 #include "kd_trace_args.h"
 #include "kd_traverse.h"
 
@@ -11,8 +10,7 @@
 #define KD_TRACE_VALUE_ARG(type, name) type name,
 __kernel void kd_trace_closest(KD_TRACE_ARGS(KD_TRACE_BUFFER_ARG, KD_TRACE_BUFFER_ARG, KD_TRACE_VALUE_ARG)
                                    __global uint* next_ray) {
-  const KdSceneView scene = kd_scene_view(nodes, empty_leaves, leaf_blocks, bounds_min.x,
-                                          bounds_min.y, bounds_min.z, bounds_max.x, bounds_max.y, bounds_max.z);
+  const KdSceneView scene = kd_scene_view(nodes, leaf_blocks, bounds_min.x, bounds_min.y, bounds_min.z, bounds_max.x, bounds_max.y, bounds_max.z);
   for (;;) {
     uint first = atomic_add(next_ray, KD_TRACE_BATCH);
     if (first >= ray_count) break;

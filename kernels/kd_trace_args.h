@@ -10,7 +10,6 @@
 
 #define KD_TRACE_ARGS(GEOMETRY, BUFFER, VALUE)   \
   GEOMETRY(const KdNode, nodes)                  \
-  BUFFER(const kd_u32, empty_leaves)             \
   GEOMETRY(const kd_u32, leaf_blocks)            \
   VALUE(float4, bounds_min)                      \
   VALUE(float4, bounds_max)                      \

@@ -61,16 +61,30 @@ KD_INLINE int kd_traverse_fast(const KdSceneView* scene, const KdRay* ray, float
       const kd_u32 below = node_index + 1u;
       const kd_u32 above = kd_node_far_child(node);
       KD_PREFETCH_NODE(scene->nodes + above);
-      const int down = (descending >> axis) & 1u;
+      const kd_u32 down = (descending >> axis) & 1u;
       const kd_u32 first = down ? above : below;
       const kd_u32 second = down ? below : above;
+      /* The header's empty bit of the first child, and of the second. */
+      const kd_u32 first_bit = down ? KD_ABOVE_EMPTY : KD_BELOW_EMPTY;
+      const kd_u32 first_empty = node.header & first_bit;
+      const kd_u32 second_empty = node.header & (first_bit ^ (KD_BELOW_EMPTY | KD_ABOVE_EMPTY));
       if (t_split < far_below) {
+        if (second_empty) {
+          empty_leaf = 1;
+          break;
+        }
         node_index = second;
       } else if (t_split > near_above) {
+        if (first_empty) {
+          empty_leaf = 1;
+          break;
+        }
         node_index = first;
       } else {
         const float t_boundary = kd_minf(kd_maxf(t_split, t_min), t_max);
-        if (KD_IS_EMPTY_LEAF(scene, first)) {
+        if (first_empty) {
+          /* Nothing near: the far segment comes next, as if popped at once (it is a node: a
+           * node has at most one empty child). */
           if (!kd_segment_may_precede(t_boundary, best)) {
             empty_leaf = 1;
             break;
@@ -79,7 +93,7 @@ KD_INLINE int kd_traverse_fast(const KdSceneView* scene, const KdRay* ray, float
           t_min = t_boundary;
           far_below = kd_fast_far_bound(t_min);
         } else {
-          if (!KD_IS_EMPTY_LEAF(scene, second)) {
+          if (!second_empty) {
             if (stack_count == KD_SHORT_STACK_SIZE) return KD_FAST_OVERFLOW;
             KD_PREFETCH_NODE(scene->nodes + second);
             stack[stack_count].node = second;
@@ -91,10 +105,6 @@ KD_INLINE int kd_traverse_fast(const KdSceneView* scene, const KdRay* ray, float
           t_max = t_boundary;
           near_above = t_max * (1.0f + KD_T_EPSILON);
         }
-      }
-      if (KD_IS_EMPTY_LEAF(scene, node_index)) {
-        empty_leaf = 1;
-        break;
       }
       node = scene->nodes[node_index];
     }

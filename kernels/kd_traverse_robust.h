@@ -30,31 +30,26 @@
 
 /* The visit step of an inner node, the one used by the ordered traversal and by the point
  * visits: which children the part [t_min, t_max] of the ray touches (KD_VISIT_NEAR,
- * KD_VISIT_FAR or both), the near child (it holds the origin, or, with the origin on the
- * plane, the side the ray moves into: below when d_k <= 0), the far child and t_split.
- * Splits at or before far_from count as far only (-INFINITY: none does). A ray lying in the
- * split plane touches above when its axis is set in plane_sides, below otherwise, as the near
- * child only, and the axis is added to *in_plane_axes. */
-KD_HOT_INLINE int kd_visit_inner(const KdRay* ray, KdNode node, kd_u32 node_index, float t_min, float t_max,
-                                 float far_from, int plane_sides, int* in_plane_axes, kd_u32* near_child,
-                                 kd_u32* far_child, float* t_split_out) {
+ * KD_VISIT_FAR or both), whether the near child is the above one (the near child holds the
+ * origin, or, with the origin on the plane, the side the ray moves into: below when d_k <= 0;
+ * kd_node_child gives its index) and t_split. Splits at or before far_from count as far only
+ * (-INFINITY: none does). A ray lying in the split plane touches above when its axis is set in
+ * plane_sides, below otherwise, as the near child only, and the axis is added to
+ * *in_plane_axes. */
+KD_HOT_INLINE int kd_visit_inner(const KdRay* ray, KdNode node, float t_min, float t_max, float far_from,
+                                 int plane_sides, int* in_plane_axes, kd_u32* near_is_above, float* t_split_out) {
   const kd_u32 axis = kd_node_axis(node);
   const float split = kd_node_split(node);
   const float origin = ray->org[axis];
-  const kd_u32 below = node_index + 1u;
-  const kd_u32 above = kd_node_far_child(node);
   if (ray->dir[axis] == 0.0f && origin == split) {
     *in_plane_axes |= 1 << axis;
-    const int go_above = (plane_sides >> axis) & 1;
-    *near_child = go_above ? above : below;
-    *far_child = go_above ? below : above;
+    *near_is_above = (kd_u32)((plane_sides >> axis) & 1);
     *t_split_out = t_min;
     return KD_VISIT_NEAR;
   }
   const float t_split = (split - origin) * ray->inv_dir[axis];
   const int below_first = origin < split || (origin == split && ray->dir[axis] <= 0.0f);
-  *near_child = below_first ? below : above;
-  *far_child = below_first ? above : below;
+  *near_is_above = below_first ? 0u : 1u;
   *t_split_out = t_split;
   if (t_split > t_max * (1.0f + KD_T_EPSILON) || t_split <= 0.0f) return KD_VISIT_NEAR;
   if (t_split < t_min * (1.0f - KD_T_EPSILON) || t_split <= far_from) return KD_VISIT_FAR;
@@ -63,9 +58,9 @@ KD_HOT_INLINE int kd_visit_inner(const KdRay* ray, KdNode node, kd_u32 node_inde
 
 /* Visits, in node order, every leaf whose voxel the ray touches at t = s (the visit step with
  * the interval [s, s]), without a stack: each descent from the root takes the first child, in
- * node order, that touches s and holds a node >= `next`; `bound` is the first node after the
- * current subtree (0xFFFFFFFF: after the whole tree). Returns 1 when any_hit is set and a hit
- * was found. */
+ * node order, that touches s, is a node and holds a node >= `next`; `bound` is the first node
+ * after the current subtree (0xFFFFFFFF: after the whole tree). Returns 1 when any_hit is set
+ * and a hit was found. */
 KD_INLINE int kd_visit_point(const KdSceneView* scene, const KdRay* ray, float s, int plane_sides,
                              int* in_plane_axes, HitRecord* best, int any_hit) {
   const kd_u32 after_tree = 0xFFFFFFFFu;
@@ -77,17 +72,20 @@ KD_INLINE int kd_visit_point(const KdSceneView* scene, const KdRay* ray, float s
     int dead_end = 0;
     while (!kd_node_is_leaf(node)) {
       KD_COUNT(scene, inner_steps, 1);
-      kd_u32 near_child, far_child;
+      kd_u32 near_is_above;
       float t_split;
-      const int visit = kd_visit_inner(ray, node, node_index, s, s, -INFINITY, plane_sides, in_plane_axes,
-                                       &near_child, &far_child, &t_split);
-      const kd_u32 below = node_index + 1u;
+      const int visit =
+          kd_visit_inner(ray, node, s, s, -INFINITY, plane_sides, in_plane_axes, &near_is_above, &t_split);
+      const int touches_below =
+          (visit & (near_is_above ? KD_VISIT_FAR : KD_VISIT_NEAR)) != 0 && !kd_node_below_empty(node);
+      const int touches_above =
+          (visit & (near_is_above ? KD_VISIT_NEAR : KD_VISIT_FAR)) != 0 && !kd_node_above_empty(node);
       const kd_u32 above = kd_node_far_child(node);
-      const int touches_below = (visit & (near_child == below ? KD_VISIT_NEAR : KD_VISIT_FAR)) != 0;
-      const int touches_above = (visit & (near_child == below ? KD_VISIT_FAR : KD_VISIT_NEAR)) != 0;
-      if (touches_below && next < above) {
-        bound = above;
-        node_index = below;
+      /* The first node after the below subtree: the above child, or the subtree's bound. */
+      const kd_u32 below_end = kd_node_above_empty(node) ? bound : above;
+      if (touches_below && next < below_end) {
+        bound = below_end;
+        node_index = node_index + 1u;
       } else if (touches_above && next < bound) {
         node_index = above;
       } else {
@@ -128,21 +126,34 @@ KD_INLINE int kd_traverse_pass(const KdSceneView* scene, const KdRay* ray, float
 
   for (;;) {
     KdNode node = scene->nodes[node_index];
-    int empty_leaf = 0; /* reached a leaf known to be empty, without fetching it */
+    int empty_leaf = 0; /* reached a child its parent marks empty */
     while (!kd_node_is_leaf(node)) {
       KD_COUNT(scene, inner_steps, 1);
-      kd_u32 near_child, far_child;
+      kd_u32 near_is_above;
       float t_split;
-      const int visit = kd_visit_inner(ray, node, node_index, t_min, t_max, far_from, plane_sides, in_plane_axes,
-                                       &near_child, &far_child, &t_split);
+      const int visit =
+          kd_visit_inner(ray, node, t_min, t_max, far_from, plane_sides, in_plane_axes, &near_is_above, &t_split);
+      const kd_u32 near_child = kd_node_child(node, node_index, near_is_above);
+      const kd_u32 far_child = kd_node_child(node, node_index, near_is_above ^ 1u);
+      const kd_u32 near_empty = kd_node_child_empty(node, near_is_above);
+      const kd_u32 far_empty = kd_node_child_empty(node, near_is_above ^ 1u);
       if (visit == KD_VISIT_NEAR) {
+        if (near_empty) {
+          empty_leaf = 1;
+          break;
+        }
         node_index = near_child;
       } else if (visit == KD_VISIT_FAR) {
+        if (far_empty) {
+          empty_leaf = 1;
+          break;
+        }
         node_index = far_child;
       } else {
         const float t_boundary = kd_minf(kd_maxf(t_split, t_min), t_max);
-        if (KD_IS_EMPTY_LEAF(scene, near_child)) {
-          /* Nothing near: the far segment comes next, as if popped at once. */
+        if (near_empty) {
+          /* Nothing near: the far segment comes next, as if popped at once (it is a node: a
+           * node has at most one empty child). */
           if (!kd_segment_may_precede(t_boundary, best)) {
             empty_leaf = 1;
             break;
@@ -150,7 +161,7 @@ KD_INLINE int kd_traverse_pass(const KdSceneView* scene, const KdRay* ray, float
           node_index = far_child;
           t_min = t_boundary;
         } else {
-          if (!KD_IS_EMPTY_LEAF(scene, far_child)) {
+          if (!far_empty) {
             KD_PREFETCH_NODE(scene->nodes + far_child);
             if (stack_count == KD_SHORT_STACK_SIZE)
               lost_t_min = kd_minf(lost_t_min, stack[stack_top].t_min);
@@ -164,10 +175,6 @@ KD_INLINE int kd_traverse_pass(const KdSceneView* scene, const KdRay* ray, float
           node_index = near_child;
           t_max = t_boundary;
         }
-      }
-      if (KD_IS_EMPTY_LEAF(scene, node_index)) {
-        empty_leaf = 1;
-        break;
       }
       node = scene->nodes[node_index];
     }

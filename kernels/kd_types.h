@@ -6,10 +6,13 @@
 #include "kd_compat.h"
 
 /* One k-d tree node, 8 bytes (formats/kdtree.md).
- *   inner: payload = bits of the split position (float32); header = far_child << 2 | axis (0,1,2).
- *          The near ("below") child is the next node in the array.
+ *   inner: payload = bits of the split position (float32);
+ *          header = far_child << 4 | above_empty << 3 | below_empty << 2 | axis (0,1,2).
+ *          A child with no triangles is no node: its bit in the parent says so, and the
+ *          traversal skips it without a load. The below child, when it is a node, is the next
+ *          node in the array; the above child, when it is a node, is far_child (0 when it is not).
  *   leaf:  payload = the first word of its block in the leaf-block array (below);
- *          header = count << 2 | 3, count = its triangles. */
+ *          header = count << 2 | 3, count = its triangles (0 only for the root of an empty scene). */
 typedef struct KdNode {
   kd_u32 payload;
   kd_u32 header;
@@ -22,12 +25,25 @@ KD_STATIC_ASSERT(sizeof(KdNode) == 8 && KD_OFFSETOF(KdNode, header) == 4,
 #define KD_MAX_TREE_DEPTH 64
 
 #define KD_LEAF_TAG 3u
-#define KD_MAX_CHILD_INDEX ((1u << 30) - 1u)
+#define KD_BELOW_EMPTY 4u
+#define KD_ABOVE_EMPTY 8u
+#define KD_CHILD_SHIFT 4u
+#define KD_MAX_CHILD_INDEX ((1u << 28) - 1u)
+#define KD_MAX_LEAF_COUNT ((1u << 30) - 1u)
 
 KD_INLINE int kd_node_is_leaf(KdNode node) { return (node.header & 3u) == KD_LEAF_TAG; }
 KD_INLINE kd_u32 kd_node_axis(KdNode node) { return node.header & 3u; }
 KD_INLINE float kd_node_split(KdNode node) { return kd_as_float(node.payload); }
-KD_INLINE kd_u32 kd_node_far_child(KdNode node) { return node.header >> 2; }
+KD_INLINE kd_u32 kd_node_far_child(KdNode node) { return node.header >> KD_CHILD_SHIFT; }
+/* Of an inner node: whether its below (above) child holds no triangles and so is no node. */
+KD_INLINE int kd_node_below_empty(KdNode node) { return (node.header & KD_BELOW_EMPTY) != 0u; }
+KD_INLINE int kd_node_above_empty(KdNode node) { return (node.header & KD_ABOVE_EMPTY) != 0u; }
+/* Of an inner node at node_index: its below (above = 0) or above (above = 1) child's index, and
+ * whether that child is empty (then it is no node, and the index means nothing). */
+KD_INLINE kd_u32 kd_node_child(KdNode node, kd_u32 node_index, kd_u32 above) {
+  return above ? kd_node_far_child(node) : node_index + 1u;
+}
+KD_INLINE kd_u32 kd_node_child_empty(KdNode node, kd_u32 above) { return (node.header >> (2u + above)) & 1u; }
 KD_INLINE kd_u32 kd_leaf_first(KdNode node) { return node.payload; }
 KD_INLINE kd_u32 kd_leaf_count(KdNode node) { return node.header >> 2; }
 

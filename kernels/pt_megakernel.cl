@@ -3,9 +3,6 @@
  * fetches its own work, with no assumption that work-items run in lockstep) and renders samples
  * sample_offset..sample_offset+sample_count-1 of it. Each pixel belongs to one work-item per
  * launch, so its film sums are updated without atomics. */
-/* Empty leaves are skipped by their node's header (kernels/kd_traverse.h): no stack round trip
- * for them; the hits, and so the image, are the same. */
-#define KD_EMPTY_LEAF_NODES
 #include "pt_kernel_args.h"
 
 __kernel void pt_render(PT_SCENE_ARGS, __global long* film, __global uint* next_pixel, __global ulong* stats) {

@@ -37,7 +37,7 @@ typedef struct PtSceneData {
 
 KD_INLINE PtSceneData pt_make_scene(PT_SCENE_ARGS) {
   PtSceneData scene;
-  scene.kd = kd_scene_view(nodes, 0, leaf_blocks, params->bounds_min[0], params->bounds_min[1],
+  scene.kd = kd_scene_view(nodes, leaf_blocks, params->bounds_min[0], params->bounds_min[1],
                            params->bounds_min[2], params->bounds_max[0], params->bounds_max[1], params->bounds_max[2]);
   /* Every shading buffer is the scene field of its own name. */
 #define PT_SCENE_SKIP(type, name)

@@ -138,7 +138,8 @@ void classify(const Event* events, size_t count, const SplitChoice& split, uint8
 }
 
 void Subtree::add_leaf(const uint32_t* triangles, size_t count) {
-  if (count > KD_MAX_CHILD_INDEX || leaf_triangles.size() + count > UINT32_MAX)
+  if (count == 0) return;
+  if (count > KD_MAX_LEAF_COUNT || leaf_triangles.size() + count > UINT32_MAX)
     throw Error("", "the tree is too large for 32-bit leaf indices");
   nodes.push_back(KdNode{static_cast<uint32_t>(leaf_triangles.size()),
                          static_cast<uint32_t>(count) << 2 | KD_LEAF_TAG});
@@ -152,9 +153,16 @@ size_t Subtree::add_inner_node(int axis, float position) {
   return nodes.size() - 1;
 }
 
-void Subtree::set_far_child(size_t inner, size_t far_child) {
-  if (far_child > KD_MAX_CHILD_INDEX) throw Error("", "the tree is too large for 30-bit child indices");
-  nodes[inner].header = static_cast<uint32_t>(far_child) << 2 | (nodes[inner].header & 3u);
+void Subtree::finish_inner_node(size_t inner, size_t far_child) {
+  const bool below_empty = far_child == inner + 1, above_empty = far_child == nodes.size();
+  if (below_empty && above_empty) {
+    nodes.pop_back();
+    return;
+  }
+  if (far_child > KD_MAX_CHILD_INDEX) throw Error("", "the tree is too large for 28-bit child indices");
+  const uint32_t far_field = above_empty ? 0u : static_cast<uint32_t>(far_child) << KD_CHILD_SHIFT;
+  nodes[inner].header = far_field | (above_empty ? KD_ABOVE_EMPTY : 0u) | (below_empty ? KD_BELOW_EMPTY : 0u) |
+                        (nodes[inner].header & 3u);
 }
 
 void validate_settings(const BuildSettings& settings) {
@@ -233,6 +241,7 @@ RootWork prepare_root(const Scene& scene) {
 KdTree describe_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel,
                      TraversalArray<KdNode>&& nodes) {
   KdTree tree;
+  if (nodes.empty()) nodes.push_back(KdNode{0, KD_LEAF_TAG});  // no triangles: the root is an empty leaf
   tree.nodes = std::move(nodes);
   tree.bounds = Bounds{{voxel.min[0], voxel.min[1], voxel.min[2]}, {voxel.max[0], voxel.max[1], voxel.max[2]}};
   tree.settings = settings;

@@ -255,25 +255,30 @@ inline void split_kept_events(const Event* events, size_t count, const uint8_t* 
 }
 
 // A tree or subtree under construction: nodes in depth-first order, near (below) child next,
-// and the leaf-triangle array. Indices are relative to this subtree.
+// and the leaf-triangle array. Indices are relative to this subtree. A leaf of no triangles adds
+// no node: its parent's header says that child is empty (kernels/kd_types.h), and a subtree
+// that holds no triangle at all (no nodes) is such an empty child.
 struct Subtree {
   TraversalArray<KdNode> nodes;
   TraversalArray<uint32_t> leaf_triangles;
 
   void add_leaf(const uint32_t* triangles, size_t count);
   // Adds an inner node, then the near child's subtree (build_near() appends it) and the far
-  // child's (build_far()), recording where the far one starts.
+  // child's (build_far()), recording where the far one starts and which of them are empty.
   template <typename BuildNear, typename BuildFar>
   void add_inner(int axis, float position, const BuildNear& build_near, const BuildFar& build_far) {
     const size_t inner = add_inner_node(axis, position);
     build_near();
-    set_far_child(inner, nodes.size());
+    const size_t far_child = nodes.size();
     build_far();
+    finish_inner_node(inner, far_child);
   }
  private:
-  // Adds an inner node whose far child is not known yet; returns its index.
+  // Adds an inner node whose children are not known yet; returns its index.
   size_t add_inner_node(int axis, float position);
-  void set_far_child(size_t inner, size_t far_child);
+  // Sets the far child and the empty-child bits of the inner node at `inner`, whose far
+  // subtree starts at `far_child`; a node with both children empty is removed again.
+  void finish_inner_node(size_t inner, size_t far_child);
 };
 
 // Room for the two children, at `depth`, of a node that a depth-first build splits: per thread

@@ -19,11 +19,13 @@ struct Placement {
 };
 
 // Lays the pieces out depth first: the inner nodes of the parallel levels (few), and where each
-// serial piece goes, to be copied in parallel.
+// serial piece goes, to be copied in parallel. A piece without nodes holds no triangle: its
+// parent marks that child empty (kernels/kd_types.h), as Subtree::add_inner does.
 class Layout {
  public:
   void place(const Piece& piece) {
     if (piece.axis < 0) {
+      if (piece.serial.nodes.empty()) return;
       placements_.push_back({&piece.serial, nodes_, leaves_});
       nodes_ += piece.serial.nodes.size();
       leaves_ += piece.serial.leaf_triangles.size();
@@ -31,13 +33,23 @@ class Layout {
     }
     uint32_t bits;
     std::memcpy(&bits, &piece.position, sizeof bits);
+    const uint64_t inner = nodes_++;
     const size_t slot = inner_nodes_.size();
-    inner_nodes_.push_back({nodes_++, KdNode{bits, static_cast<uint32_t>(piece.axis)}});
+    inner_nodes_.push_back({inner, KdNode{bits, static_cast<uint32_t>(piece.axis)}});
     place(*piece.below);
-    // Checked before the shift, so that an oversized tree cannot wrap into a valid index.
-    if (nodes_ > KD_MAX_CHILD_INDEX) throw Error("", "the tree is too large for 30-bit child indices");
-    inner_nodes_[slot].node.header |= static_cast<uint32_t>(nodes_) << 2;
+    const uint64_t far_child = nodes_;
     place(*piece.above);
+    const bool below_empty = far_child == inner + 1, above_empty = far_child == nodes_;
+    if (below_empty && above_empty) {
+      inner_nodes_.pop_back();
+      --nodes_;
+      return;
+    }
+    // Checked before the shift, so that an oversized tree cannot wrap into a valid index.
+    if (far_child > KD_MAX_CHILD_INDEX) throw Error("", "the tree is too large for 28-bit child indices");
+    KdNode& node = inner_nodes_[slot].node;
+    node.header |= (above_empty ? KD_ABOVE_EMPTY : static_cast<uint32_t>(far_child) << KD_CHILD_SHIFT) |
+                   (below_empty ? KD_BELOW_EMPTY : 0u);
   }
 
   uint64_t nodes() const { return nodes_; }
@@ -77,13 +89,13 @@ Subtree flatten(Piece&& root) {
     const Placement& placement = placements[i];
     const Subtree& serial = *placement.serial;
     KdNode* nodes = out.nodes.data() + placement.node_base;
-    const uint32_t node_shift = static_cast<uint32_t>(placement.node_base) << 2;
+    const uint32_t node_shift = static_cast<uint32_t>(placement.node_base) << KD_CHILD_SHIFT;
     const uint32_t leaf_shift = static_cast<uint32_t>(placement.leaf_base);
     for (size_t n = 0; n < serial.nodes.size(); ++n) {
       KdNode node = serial.nodes[n];
       if (kd_node_is_leaf(node))
         node.payload += leaf_shift;
-      else
+      else if (!kd_node_above_empty(node))
         node.header += node_shift;
       nodes[n] = node;
     }

@@ -1,5 +1,5 @@
 // The short-stack traversal once more, with the work counters of kernels/kd_traverse.h compiled
-// in: PreparedTraversal::count_work. A translation unit of its own keeps them out of the timed
+// in: count_traversal_work. A translation unit of its own keeps them out of the timed
 // variants.
 #include "traversal_variant.h"
 
@@ -10,7 +10,6 @@
 namespace kdray::detail {
 namespace counting_short_stack {
 
-#define KD_EMPTY_LEAF_BITS
 #define KD_TRAVERSAL_COUNTERS
 #include <kernels/kd_traverse.h>
 

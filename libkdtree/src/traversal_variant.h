@@ -14,7 +14,6 @@ namespace kdray::detail {
 struct TraversalArrays {
   const KdNode* nodes;
   const uint32_t* leaf_blocks;
-  const uint32_t* empty_leaves;    // empty_leaf_bits: every CPU build defines KD_EMPTY_LEAF_BITS
   float bounds_min[3], bounds_max[3];
 };
 
@@ -24,7 +23,7 @@ template <typename SceneView>
 auto make_view(SceneView scene_view, const TraversalArrays& arrays) {
   const float* lo = arrays.bounds_min;
   const float* hi = arrays.bounds_max;
-  return scene_view(arrays.nodes, arrays.empty_leaves, arrays.leaf_blocks, lo[0], lo[1], lo[2], hi[0], hi[1],
+  return scene_view(arrays.nodes, arrays.leaf_blocks, lo[0], lo[1], lo[2], hi[0], hi[1],
                     hi[2]);
 }
 

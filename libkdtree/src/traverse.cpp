@@ -16,10 +16,9 @@
 namespace kdray {
 namespace {
 
-detail::TraversalArrays arrays_of(const KdTree& tree, const uint32_t* empty_leaves) {
+detail::TraversalArrays arrays_of(const KdTree& tree) {
   detail::TraversalArrays arrays{};
   arrays.nodes = tree.nodes.data();
-  arrays.empty_leaves = empty_leaves;
   arrays.leaf_blocks = tree.leaf_blocks.data();
   const float* lo = &tree.bounds.min.x;
   const float* hi = &tree.bounds.max.x;
@@ -59,38 +58,18 @@ void trace_in_chunks(const detail::TraversalArrays& arrays, const std::vector<Ra
 
 }  // namespace
 
-std::vector<uint32_t> empty_leaf_bits(const KdTree& tree) {
-  const size_t nodes = tree.nodes.size();
-  std::vector<uint32_t> bits((nodes + 31) / 32);
-  // An empty leaf's header is the leaf tag with a count of 0. Whole words of 32 nodes without a
-  // branch per node, so the loop vectorises: it runs at every load of a tree of millions of nodes.
-  auto word_of = [&](size_t word, size_t count) {
-    const KdNode* node = tree.nodes.data() + word * 32;
-    uint32_t value = 0;
-    for (size_t bit = 0; bit < count; ++bit) value |= uint32_t{node[bit].header == KD_LEAF_TAG} << bit;
-    return value;
-  };
-  const size_t whole_words = nodes / 32;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, whole_words, 4096), [&](const tbb::blocked_range<size_t>& words) {
-    for (size_t word = words.begin(); word < words.end(); ++word) bits[word] = word_of(word, 32);
-  });
-  if (nodes % 32 != 0) bits[whole_words] = word_of(whole_words, nodes % 32);
-  return bits;
+void trace_closest(const KdTree& tree, const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
+                   const TraceOptions& options) {
+  trace_in_chunks(arrays_of(tree), rays, hits, options.threads, variant_of(options.stack, options.path).closest);
 }
 
-PreparedTraversal::PreparedTraversal(const KdTree& tree) : tree_(tree), empty_leaves_(empty_leaf_bits(tree)) {}
-
-detail::TraversalArrays PreparedTraversal::arrays() const {
-  return arrays_of(tree_, empty_leaves_.data());
+void trace_any(const KdTree& tree, const std::vector<RayRecord>& rays, std::vector<uint8_t>& occluded,
+               const TraceOptions& options) {
+  trace_in_chunks(arrays_of(tree), rays, occluded, options.threads, variant_of(options.stack, options.path).any);
 }
 
-void PreparedTraversal::closest(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
-                                const TraceOptions& options) const {
-  trace_in_chunks(arrays(), rays, hits, options.threads, variant_of(options.stack, options.path).closest);
-}
-
-TraversalWork PreparedTraversal::count_work(const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
-                                            const TraceOptions& options) const {
+TraversalWork count_traversal_work(const KdTree& tree, const std::vector<RayRecord>& rays,
+                                   std::vector<HitRecord>& hits, const TraceOptions& options) {
   std::atomic<uint64_t> inner_steps{0}, leaves{0}, triangle_tests{0}, fast_path_rays{0}, fast_path_restarts{0};
   auto count_chunk = [&](const detail::TraversalArrays& arrays, const RayRecord* chunk, HitRecord* chunk_hits,
                          size_t count) {
@@ -101,7 +80,7 @@ TraversalWork PreparedTraversal::count_work(const std::vector<RayRecord>& rays, 
     fast_path_rays += counts.fast_path_rays;
     fast_path_restarts += counts.fast_path_restarts;
   };
-  trace_in_chunks(arrays(), rays, hits, options.threads, count_chunk);
+  trace_in_chunks(arrays_of(tree), rays, hits, options.threads, count_chunk);
   TraversalWork work;
   work.rays = rays.size();
   work.inner_steps = inner_steps;
@@ -112,25 +91,9 @@ TraversalWork PreparedTraversal::count_work(const std::vector<RayRecord>& rays, 
   return work;
 }
 
-void PreparedTraversal::any(const std::vector<RayRecord>& rays, std::vector<uint8_t>& occluded,
-                            const TraceOptions& options) const {
-  trace_in_chunks(arrays(), rays, occluded, options.threads, variant_of(options.stack, options.path).any);
-}
-
-void trace_closest(const KdTree& tree, const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
-                   const TraceOptions& options) {
-  PreparedTraversal(tree).closest(rays, hits, options);
-}
-
-void trace_any(const KdTree& tree, const std::vector<RayRecord>& rays, std::vector<uint8_t>& occluded,
-               const TraceOptions& options) {
-  PreparedTraversal(tree).any(rays, occluded, options);
-}
-
 HitRecord intersect_closest(const KdTree& tree, const RayRecord& ray, TraversalStack stack) {
-  const std::vector<uint32_t> empty_leaves = empty_leaf_bits(tree);
   HitRecord hit;
-  variant_of(stack).closest(arrays_of(tree, empty_leaves.data()), &ray, &hit, 1);
+  variant_of(stack).closest(arrays_of(tree), &ray, &hit, 1);
   return hit;
 }
 

@@ -121,13 +121,14 @@ struct LeafSpan {
 };
 
 // Checks that the nodes [begin, end) form one subtree whose root is `begin`, at `depth`, in the
-// documented depth-first layout (near child next, far child right after the near subtree), no
-// deeper than KD_MAX_TREE_DEPTH, with every split finite and every leaf's block inside the
-// leaf-block array and intact (leaf_block_problem). One pass in node order: each inner node
-// leaves its far child pending, each leaf must be followed by the nearest pending node. A load
-// of millions of nodes runs it, so a node's checks are computed without branches and only a
-// failure leaves the loop; the non-empty leaves are gathered, also without a branch, and their
-// blocks checked a batch at a time, each fetched ahead of its check.
+// documented depth-first layout (the first child that is a node next, the above child right
+// after the below subtree, empty children marked and absent), no deeper than KD_MAX_TREE_DEPTH,
+// with every split finite and every leaf's block inside the leaf-block array and intact
+// (leaf_block_problem). One pass in node order: each inner node with two children leaves its
+// far child pending, each leaf must be followed by the nearest pending node. A load of millions
+// of nodes runs it, so a node's checks are computed without branches and only a failure leaves
+// the loop; the non-empty leaves are gathered, also without a branch, and their blocks checked a
+// batch at a time, each fetched ahead of its check.
 void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end, uint32_t depth,
                                const std::string& path) {
   struct Pending {
@@ -165,35 +166,49 @@ void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end,
   const KdNode* nodes = tree.nodes.data();
   for (uint64_t index = begin; index < end; ++index) {
     const KdNode node = nodes[index];
-    const bool leaf = kd_node_is_leaf(node);
-    const uint64_t field = kd_node_far_child(node);  // a leaf's triangle count
+    const uint32_t leaf = static_cast<uint32_t>(kd_node_is_leaf(node));
+    const uint64_t count = kd_leaf_count(node);  // of a leaf
+    const uint64_t far = kd_node_far_child(node);  // of an inner node
     const Pending resume = pending[top - 1];
     const bool finite_split = (node.payload & 0x7f800000u) != 0x7f800000u;
-    // As 0/1 integers combined with a mask, so the compiler keeps them free of branches.
-    const uint32_t leaf_mask = 0u - static_cast<uint32_t>(leaf);
-    const uint32_t inner_valid = static_cast<uint32_t>(field > index + 1) & static_cast<uint32_t>(field < end) &
+    // As 0/1 integers combined with masks, so the compiler keeps them free of branches.
+    const uint32_t leaf_mask = 0u - leaf;
+    const uint32_t below_empty = static_cast<uint32_t>(kd_node_below_empty(node)) & ~leaf_mask & 1u;
+    const uint32_t above_empty = static_cast<uint32_t>(kd_node_above_empty(node)) & ~leaf_mask & 1u;
+    const uint32_t far_valid =
+        (above_empty & static_cast<uint32_t>(far == 0)) |
+        ((above_empty ^ 1u) & static_cast<uint32_t>(far < end) &
+         ((below_empty & static_cast<uint32_t>(far == index + 1)) | ((below_empty ^ 1u) & static_cast<uint32_t>(far > index + 1))));
+    const uint32_t inner_valid = far_valid & ((below_empty & above_empty) ^ 1u) &
                                  static_cast<uint32_t>(depth < KD_MAX_TREE_DEPTH) & static_cast<uint32_t>(finite_split);
-    const uint32_t leaf_valid = static_cast<uint32_t>(uint64_t{kd_leaf_first(node)} + 2 * field <= block_words) &
-                                static_cast<uint32_t>(resume.node == index + 1);
+    // A leaf of no triangles is a whole empty tree's root; elsewhere its parent marks it.
+    const uint32_t leaf_valid = static_cast<uint32_t>(uint64_t{kd_leaf_first(node)} + 2 * count <= block_words) &
+                                static_cast<uint32_t>(resume.node == index + 1) &
+                                static_cast<uint32_t>(count != 0 || index == 0);
     const uint32_t valid = (leaf_valid & leaf_mask) | (inner_valid & ~leaf_mask);
     if (__builtin_expect(valid == 0, 0)) {
       const std::string at = "damaged tree: node " + std::to_string(index);
       if (!leaf && depth >= KD_MAX_TREE_DEPTH)
         throw Error(path, "damaged tree: deeper than " + std::to_string(KD_MAX_TREE_DEPTH) + " levels");
       if (!leaf && !finite_split) throw Error(path, at + " has a non-finite split");
+      if (!leaf && below_empty && above_empty) throw Error(path, at + " marks both its children empty");
       if (!leaf) throw Error(path, at + " has an invalid far child");
+      if (count == 0 && resume.node == index + 1) throw Error(path, at + " is an empty leaf below the root");
       if (resume.node == index + 1)
         throw Error(path, "damaged tree: leaf " + std::to_string(index) + " reaches past the leaf blocks");
       if (resume.node == tree.nodes.size()) throw Error(path, "damaged tree: unreachable nodes");
       throw Error(path, "damaged tree: node " + std::to_string(resume.node) + " is out of place");
     }
-    const uint64_t kept = static_cast<uint64_t>(leaf) & static_cast<uint64_t>(field != 0);
-    spans[span_count] = {index, kd_leaf_first(node), field};
+    const uint64_t kept = uint64_t{leaf} & static_cast<uint64_t>(count != 0);
+    spans[span_count] = {index, kd_leaf_first(node), count};
     span_count += kept;
-    words_claimed += (2 * field) & (0 - kept);
+    words_claimed += (2 * count) & (0 - kept);
     if (span_count == kBatch) check_batch();
-    pending[top] = {field, depth + 1};  // kept only by an inner node
-    top = top + 1 - 2 * static_cast<uint32_t>(leaf);
+    // An inner node with two children leaves the far one pending; one with a single child goes on
+    // into it, the next node; a leaf resumes at the nearest pending node.
+    const uint32_t pushed = (leaf ^ 1u) & (below_empty ^ 1u) & (above_empty ^ 1u);
+    pending[top] = {far, depth + 1};  // kept only when pushed
+    top = top + pushed - leaf;
     depth = (resume.depth & leaf_mask) | ((depth + 1) & ~leaf_mask);
   }
   check_batch();
@@ -205,8 +220,9 @@ void validate_subtree(const KdTree& tree, uint64_t begin, uint64_t end, uint32_t
   constexpr uint64_t kSerialNodes = uint64_t{1} << 18;
   const KdNode root = tree.nodes[begin];
   const uint64_t far = kd_node_far_child(root);
-  const bool splits = end - begin > kSerialNodes && !kd_node_is_leaf(root) && far > begin + 1 && far < end &&
-                      depth < KD_MAX_TREE_DEPTH && std::isfinite(kd_node_split(root));
+  const bool splits = end - begin > kSerialNodes && !kd_node_is_leaf(root) && !kd_node_below_empty(root) &&
+                      !kd_node_above_empty(root) && far > begin + 1 && far < end && depth < KD_MAX_TREE_DEPTH &&
+                      std::isfinite(kd_node_split(root));
   if (!splits) {
     validate_subtree_serially(tree, begin, end, depth, path);
     return;
@@ -272,13 +288,13 @@ uint64_t tree_key(uint64_t geometry_hash, const BuildSettings& settings) {
 
 namespace {
 
-// The tree of a mapped version 4 file, its arrays viewing the mapping, checked throughout.
+// The tree of a mapped version 5 file, its arrays viewing the mapping, checked throughout.
 KdTree tree_of(const MappedContainer& file, const std::string& path) {
   const uint32_t version = file.contents.header.version;
-  if (version < 4)
+  if (version < 5)
     throw Error(path, "a version " + std::to_string(version) +
-                          " tree, which this build no longer reads (version 4 stores each leaf as one block of its "
-                          "triangles and their shared corners): rebuild it with kdbuild");
+                          " tree, which this build no longer reads (version 5 marks empty leaves in their parents "
+                          "instead of storing them as nodes): rebuild it with kdbuild");
   KdTree tree;
   std::string parameters, statistics;
   float bounds[6] = {};

@@ -50,43 +50,46 @@ class Walk {
 
   detail::Box3 root() const { return detail::box_of(tree_.bounds); }
 
-  // Adds the node's terms to `totals`; for an inner node, returns true and its children.
-  bool visit(const Pending& item, Totals& totals, Pending& below, Pending& above) const {
+  // Adds the node's terms to `totals`; returns how many of its children are nodes (an inner
+  // node's empty children are counted here, as the empty leaves they stand for) and puts them
+  // in `children`, below first.
+  int visit(const Pending& item, Totals& totals, Pending children[2]) const {
     const KdNode node = tree_.nodes[item.node];
     if (kd_node_is_leaf(node)) {
-      ++totals.leaves;
-      const uint32_t count = kd_leaf_count(node);
-      totals.empty_leaves += count == 0;
-      totals.references += count;
-      totals.depth_sum += item.depth;
-      totals.max_depth = std::max(totals.max_depth, item.depth);
-      totals.sah_cost += item.weight * cost_.leaf_cost(count) * relative_area(item.voxel);
-      return false;
+      add_leaf(item.depth, kd_leaf_count(node), item.weight, relative_area(item.voxel), totals);
+      return 0;
     }
     ++totals.inner_nodes;
     const int axis = static_cast<int>(kd_node_axis(node));
     const float split = kd_node_split(node);
     const detail::SplitAreas areas(item.voxel, axis);
     const bool whole_voxel_child = areas.below(split) == 1.0 || areas.above(split) == 1.0;
-    const bool empty_child = is_empty_leaf(item.node + 1) || is_empty_leaf(kd_node_far_child(node));
-    const double weight = item.weight * (empty_child && !whole_voxel_child ? cost_.empty_bonus : 1.0);
+    const bool below_empty = kd_node_below_empty(node), above_empty = kd_node_above_empty(node);
+    const double weight =
+        item.weight * ((below_empty || above_empty) && !whole_voxel_child ? cost_.empty_bonus : 1.0);
     totals.sah_cost += weight * cost_.traversal * relative_area(item.voxel);
-    below = {item.node + 1, item.depth + 1, weight, detail::below_plane(item.voxel, axis, split)};
-    above = {kd_node_far_child(node), item.depth + 1, weight, detail::above_plane(item.voxel, axis, split)};
-    return true;
+    int count = 0;
+    if (below_empty)
+      add_leaf(item.depth + 1, 0, 0.0, 0.0, totals);
+    else
+      children[count++] = {item.node + 1, item.depth + 1, weight, detail::below_plane(item.voxel, axis, split)};
+    if (above_empty)
+      add_leaf(item.depth + 1, 0, 0.0, 0.0, totals);
+    else
+      children[count++] = {kd_node_far_child(node), item.depth + 1, weight, detail::above_plane(item.voxel, axis, split)};
+    return count;
   }
 
   // The totals of the subtree of `top`, depth first.
   Totals subtree(const Pending& top) const {
     Totals totals;
     std::vector<Pending> stack{top};
-    Pending below, above;
+    Pending children[2];
     while (!stack.empty()) {
       const Pending item = stack.back();
       stack.pop_back();
-      if (!visit(item, totals, below, above)) continue;
-      stack.push_back(above);
-      stack.push_back(below);
+      const int count = visit(item, totals, children);
+      for (int c = count - 1; c >= 0; --c) stack.push_back(children[c]);
     }
     return totals;
   }
@@ -96,8 +99,14 @@ class Walk {
   double relative_area(const detail::Box3& box) const {
     return root_area_ > 0.0 ? detail::surface_area(box) / root_area_ : 1.0;
   }
-  bool is_empty_leaf(uint32_t index) const {
-    return kd_node_is_leaf(tree_.nodes[index]) && kd_leaf_count(tree_.nodes[index]) == 0;
+  // A leaf's terms (an empty leaf's SAH term is 0).
+  void add_leaf(uint32_t depth, uint32_t count, double weight, double area, Totals& totals) const {
+    ++totals.leaves;
+    totals.empty_leaves += count == 0;
+    totals.references += count;
+    totals.depth_sum += depth;
+    totals.max_depth = std::max(totals.max_depth, depth);
+    totals.sah_cost += weight * cost_.leaf_cost(count) * area;
   }
 
   const KdTree& tree_;
@@ -118,10 +127,9 @@ TreeStats compute_tree_stats(const KdTree& tree, uint64_t scene_triangles) {
   for (int level = 0; level < kSerialLevels; ++level) {
     std::vector<Pending> next;
     for (const Pending& item : subtrees) {
-      Pending below, above;
-      if (!walk.visit(item, totals, below, above)) continue;
-      next.push_back(below);
-      next.push_back(above);
+      Pending children[2];
+      const int count = walk.visit(item, totals, children);
+      next.insert(next.end(), children, children + count);
     }
     subtrees.swap(next);
   }

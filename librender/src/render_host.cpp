@@ -30,7 +30,6 @@
 #define KD_FEATURE_PUNCTUAL
 #define KD_FEATURE_ORTHOGRAPHIC
 #define KD_MIS_OFF  // a switch, asked of the scene's bits as the features are
-#define KD_EMPTY_LEAF_NODES  // as the megakernel: the same hits, fewer node fetches
 
 #include "render_internal.h"
 

@@ -68,12 +68,10 @@ std::vector<HitRecord> trace_rays_opencl(const KdTree& tree, const std::vector<R
   DeviceGeometry geometry = upload_geometry(runtime, arrays);
   // The kernel's arguments that are not DeviceGeometry buffers, named as in KD_TRACE_ARGS.
   struct {
-    cl::Buffer empty_leaves, rays, hits;
+    cl::Buffer rays, hits;
     cl_float4 bounds_min, bounds_max;
     cl_uint ray_count;
   } args;
-  const std::vector<uint32_t> empty_leaf_words = empty_leaf_bits(tree);
-  args.empty_leaves = runtime.buffer(empty_leaf_words.size() * sizeof(uint32_t), empty_leaf_words.data());
   args.rays = runtime.buffer(rays.size() * sizeof(RayRecord), rays.data());
   args.hits = runtime.buffer(rays.size() * sizeof(HitRecord), nullptr, CL_MEM_WRITE_ONLY);
   args.bounds_min = {{arrays.bounds_min[0], arrays.bounds_min[1], arrays.bounds_min[2], 0}};

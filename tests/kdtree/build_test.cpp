@@ -25,15 +25,16 @@ bool same_tree(const KdTree& a, const KdTree& b) { return test::same_tree_bytes(
 
 // FNV-1a 64 over the nodes and the leaves' triangle indices: the tree's shape in one number (the
 // corners in the leaf blocks are the scene's). Each leaf is fed with its first index in the
-// concatenated triangle lists, as the builder numbers them, not with where its block lies: the
-// fingerprint is the builder's, whatever the file's leaf layout.
+// concatenated triangle lists, as the builder numbers them, not with where its block lies, and
+// the nodes as version 4 laid them out (every empty child a node): the fingerprint is the
+// builder's, whatever the file's leaf layout and encoding of empty children.
 uint64_t tree_fingerprint(const KdTree& tree) {
   uint64_t hash = 0xcbf29ce484222325ull;
   auto feed = [&](const void* data, size_t size) {
     for (size_t i = 0; i < size; ++i) hash = (hash ^ static_cast<const unsigned char*>(data)[i]) * 0x100000001b3ull;
   };
   uint32_t references = 0;
-  for (KdNode node : tree.nodes) {
+  for (KdNode node : test::nodes_with_empty_leaves(tree)) {
     if (kd_node_is_leaf(node)) {
       node.payload = references;
       references += kd_leaf_count(node);
@@ -103,7 +104,8 @@ TEST(KdBuild, StatisticsDescribeTheTree) {
   const Scene scene = test::icosphere_scene(4, {0, 0, 0}, 1);
   const KdTree tree = build_kdtree(scene, BuildSettings{});
   const TreeStats& stats = tree.stats;
-  EXPECT_EQ(stats.inner_nodes + stats.leaves, tree.nodes.size());
+  EXPECT_EQ(stats.inner_nodes + stats.leaves - stats.empty_leaves, tree.nodes.size()) << "empty leaves are no nodes";
+  EXPECT_EQ(stats.inner_nodes + stats.leaves, test::nodes_with_empty_leaves(tree).size());
   EXPECT_EQ(stats.leaves, stats.inner_nodes + 1);
   EXPECT_EQ(stats.leaf_references, test::leaf_triangle_indices(tree).size());
   EXPECT_GE(stats.references_per_triangle, 1.0);
@@ -228,20 +230,22 @@ BuildSettings binned_above(uint32_t above, uint32_t bins = BuildSettings::kDefau
   return settings;
 }
 
-// The builder's cost, C = lambda (K_T + P_L C_L + P_R C_R) and K_I N, by recursion.
+// The builder's cost, C = lambda (K_T + P_L C_L + P_R C_R) and K_I N, by recursion (an empty
+// child costs 0).
 double recursive_cost(const KdTree& tree, uint32_t index, const detail::Box3& voxel, double root_area) {
   const KdNode node = tree.nodes[index];
   const double area = detail::surface_area(voxel) / root_area;
   if (kd_node_is_leaf(node)) return tree.settings.intersection_cost * static_cast<double>(kd_leaf_count(node)) * area;
   const int axis = static_cast<int>(kd_node_axis(node));
   const float split = kd_node_split(node);
-  auto empty_leaf = [&](uint32_t child) {
-    return kd_node_is_leaf(tree.nodes[child]) && kd_leaf_count(tree.nodes[child]) == 0;
-  };
-  const bool bonus = (empty_leaf(index + 1) || empty_leaf(kd_node_far_child(node))) && split != voxel.min[axis] &&
+  const bool bonus = (kd_node_below_empty(node) || kd_node_above_empty(node)) && split != voxel.min[axis] &&
                      split != voxel.max[axis];
-  const double below = recursive_cost(tree, index + 1, detail::below_plane(voxel, axis, split), root_area);
-  const double above = recursive_cost(tree, kd_node_far_child(node), detail::above_plane(voxel, axis, split), root_area);
+  const double below = kd_node_below_empty(node)
+                           ? 0.0
+                           : recursive_cost(tree, index + 1, detail::below_plane(voxel, axis, split), root_area);
+  const double above = kd_node_above_empty(node) ? 0.0
+                                                 : recursive_cost(tree, kd_node_far_child(node),
+                                                                  detail::above_plane(voxel, axis, split), root_area);
   return (bonus ? tree.settings.empty_bonus : 1.0) * (tree.settings.traversal_cost * area + below + above);
 }
 
@@ -292,7 +296,7 @@ TEST(KdBuild, BinnedTreeIsValidAndCloseToTheExactOne) {
       exact_settings.binned_above = 0;
       const KdTree exact = build_kdtree(scene, exact_settings);
       const TreeStats& stats = binned.stats;
-      EXPECT_EQ(stats.inner_nodes + stats.leaves, binned.nodes.size());
+      EXPECT_EQ(stats.inner_nodes + stats.leaves - stats.empty_leaves, binned.nodes.size());
       EXPECT_EQ(stats.leaves, stats.inner_nodes + 1);
       EXPECT_LE(stats.max_depth, settings.resolved(scene.triangle_count()).max_depth);
       expect_all_triangles_referenced(scene, binned);

@@ -32,7 +32,7 @@ __kernel void report_features(__global int* out) {
 
 __kernel void trace_closest(__global const KdNode* nodes, __global const kd_u32* leaf_blocks,
                             __global const float* bounds, __global const RayRecord* rays, __global HitRecord* hits) {
-  const KdSceneView scene = kd_scene_view(nodes, 0, leaf_blocks, bounds[0], bounds[1], bounds[2], bounds[3],
+  const KdSceneView scene = kd_scene_view(nodes, leaf_blocks, bounds[0], bounds[1], bounds[2], bounds[3],
                                           bounds[4], bounds[5]);
   size_t i = get_global_id(0);
   hits[i] = kd_intersect_closest(&scene, rays[i]);

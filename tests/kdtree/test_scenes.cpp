@@ -138,6 +138,35 @@ std::vector<uint32_t> leaf_triangle_indices(const KdTree& tree) {
   return indices;
 }
 
+namespace {
+
+void add_with_empty_leaves(const KdTree& tree, uint32_t index, std::vector<KdNode>& out) {
+  const KdNode node = tree.nodes[index];
+  if (kd_node_is_leaf(node)) {
+    out.push_back(node);
+    return;
+  }
+  const size_t inner = out.size();
+  out.push_back(KdNode{node.payload, kd_node_axis(node)});
+  if (kd_node_below_empty(node))
+    out.push_back(KdNode{0, KD_LEAF_TAG});
+  else
+    add_with_empty_leaves(tree, index + 1, out);
+  out[inner].header |= static_cast<uint32_t>(out.size()) << 2;
+  if (kd_node_above_empty(node))
+    out.push_back(KdNode{0, KD_LEAF_TAG});
+  else
+    add_with_empty_leaves(tree, kd_node_far_child(node), out);
+}
+
+}  // namespace
+
+std::vector<KdNode> nodes_with_empty_leaves(const KdTree& tree) {
+  std::vector<KdNode> out;
+  add_with_empty_leaves(tree, 0, out);
+  return out;
+}
+
 bool same_tree_bytes(const KdTree& a, const KdTree& b) {
   return a.nodes.size() == b.nodes.size() && a.leaf_blocks.size() == b.leaf_blocks.size() &&
          std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(KdNode)) == 0 &&

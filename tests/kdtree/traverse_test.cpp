@@ -208,7 +208,7 @@ TEST(KdTraverse, NonFiniteRaysMiss) {
 KdNode inner_node(uint32_t axis, float split, uint32_t far_child) {
   uint32_t bits;
   std::memcpy(&bits, &split, sizeof bits);
-  return KdNode{bits, far_child << 2 | axis};
+  return KdNode{bits, far_child << KD_CHILD_SHIFT | axis};
 }
 
 KdNode leaf_node(uint32_t first, uint32_t count) { return KdNode{first, count << 2 | KD_LEAF_TAG}; }

@@ -94,7 +94,7 @@ TEST_F(KdTreeFile, LeafBlockBytesOfAnyRangeAreThoseOfTheWholeArray) {
   std::vector<uint32_t> triangles;
   for (uint32_t t = 0; t < 300; ++t) triangles.push_back(t);
   // A split on x at 0 (far child 2), then leaves of triangles [0, 20) and [20, 300).
-  TraversalArray<KdNode> nodes = {KdNode{0, 2u << 2}, KdNode{0, 20u << 2 | KD_LEAF_TAG},
+  TraversalArray<KdNode> nodes = {KdNode{0, 2u << KD_CHILD_SHIFT}, KdNode{0, 20u << 2 | KD_LEAF_TAG},
                                   KdNode{20, 280u << 2 | KD_LEAF_TAG}};
   TraversalArray<KdNode> planned = nodes;
   const TraversalArray<uint32_t> whole = leaf_blocks_of(scene_, nodes, triangles.data());
@@ -134,8 +134,8 @@ TEST_F(KdTreeFile, BinningIsRecordedAndAnExactTreeKeepsItsKey) {
   EXPECT_NE(tree_key(1, binned), tree_key(1, exact));
   // The exact sweep's section 3 holds the five fields trees had before binning, so its key
   // changes with the format version only (version 2 gave 0x4237eda0fa487d3c, version 3
-  // 0xb7c5220bd88d19c5).
-  EXPECT_EQ(tree_key(0x0123456789abcdefull, exact), 0xbefeff730f16f7ceull);
+  // 0xb7c5220bd88d19c5, version 4 0xbefeff730f16f7ce).
+  EXPECT_EQ(tree_key(0x0123456789abcdefull, exact), 0xc1c8e505256988a8ull);
 }
 
 // A read tree views its file's pages: a writer replacing the file (by rename, as every writer
@@ -189,12 +189,29 @@ TEST_F(KdTreeFile, InvalidStructureIsRejected) {
     EXPECT_NE(error.find(expected), std::string::npos) << what << ": " << error;
   };
   ASSERT_FALSE(kd_node_is_leaf(tree_.nodes[0]));
+  ASSERT_FALSE(kd_node_below_empty(tree_.nodes[0]) || kd_node_above_empty(tree_.nodes[0]));
   KdTree tree = tree_;
-  tree.nodes.own()[0].header = static_cast<uint32_t>(tree.nodes.size() + 5) << 2 | kd_node_axis(tree.nodes[0]);
+  tree.nodes.own()[0].header = static_cast<uint32_t>(tree.nodes.size() + 5) << KD_CHILD_SHIFT | kd_node_axis(tree.nodes[0]);
   expect_rejected(tree, "far child out of range", "far child");
   tree = tree_;
-  tree.nodes.own()[0].header = 1u << 2 | kd_node_axis(tree.nodes[0]);
+  tree.nodes.own()[0].header = 1u << KD_CHILD_SHIFT | kd_node_axis(tree.nodes[0]);
   expect_rejected(tree, "far child = near child", "far child");
+  tree = tree_;
+  tree.nodes.own()[0].header |= KD_ABOVE_EMPTY;
+  expect_rejected(tree, "an empty above child with a far child", "far child");
+  tree = tree_;
+  tree.nodes.own()[0].header |= KD_BELOW_EMPTY;
+  expect_rejected(tree, "an empty below child with the far child not next", "far child");
+  tree = tree_;
+  tree.nodes.own()[0].header = KD_BELOW_EMPTY | KD_ABOVE_EMPTY | kd_node_axis(tree.nodes[0]);
+  expect_rejected(tree, "both children empty", "both its children empty");
+  tree = tree_;
+  for (KdNode& node : tree.nodes.own())
+    if (kd_node_is_leaf(node)) {
+      node.header = KD_LEAF_TAG;
+      break;
+    }
+  expect_rejected(tree, "an empty leaf below the root", "empty leaf below the root");
   tree = tree_;
   for (KdNode& node : tree.nodes.own())
     if (kd_node_is_leaf(node) && kd_leaf_count(node) > 0) {
@@ -256,7 +273,7 @@ TEST_F(KdTreeFile, LeavesClaimingOneBlockAreRejected) {
 // A file damaged in its structure and in its bytes: the checksum is what the reader reports.
 TEST_F(KdTreeFile, AChecksumMismatchIsReportedBeforeWhatTheChecksBesideItFound) {
   KdTree tree = tree_;
-  tree.nodes.own()[0].header = static_cast<uint32_t>(tree.nodes.size() + 5) << 2 | kd_node_axis(tree.nodes[0]);
+  tree.nodes.own()[0].header = static_cast<uint32_t>(tree.nodes.size() + 5) << KD_CHILD_SHIFT | kd_node_axis(tree.nodes[0]);
   write_tree(path("a.kdtree"), tree);
   std::vector<char> bytes = bytes_of(path("a.kdtree"));
   bytes[bytes.size() - 5] ^= 0x10;
@@ -264,62 +281,92 @@ TEST_F(KdTreeFile, AChecksumMismatchIsReportedBeforeWhatTheChecksBesideItFound) 
   EXPECT_NE(read_error(path("a.kdtree")).find("checksum"), std::string::npos) << read_error(path("a.kdtree"));
 }
 
-// A complete tree of 2^20 empty leaves (about two million nodes): large enough that a reader
-// checks its subtrees in parallel pieces. Damage deep in either half must still be found.
-KdTree complete_tree(uint32_t levels) {
+// A leaf of triangle 0 whose block (appended to the tree's) is valid: its index, its corner
+// numbers 0, 1, 2 and three corners.
+KdNode add_one_triangle_leaf(KdTree& tree) {
+  TraversalArray<uint32_t>& words = tree.leaf_blocks.own();
+  const uint32_t first = static_cast<uint32_t>(words.size());
+  words.push_back(0);
+  words.push_back(0u | 1u << KD_LEAF_CORNER_BITS | 2u << (2 * KD_LEAF_CORNER_BITS));
+  const float corners[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  for (float corner : corners) {
+    uint32_t bits;
+    std::memcpy(&bits, &corner, sizeof bits);
+    words.push_back(bits);
+  }
+  return KdNode{first, 1u << 2 | KD_LEAF_TAG};
+}
+
+// A tree of about 1.6 million nodes, large enough that a reader checks its subtrees in parallel
+// pieces: 2^15 leaves of one triangle under a complete tree of 15 levels, each at the end of a
+// chain of 48 inner nodes with one empty child (alternately above and below). Damage deep in
+// either half must still be found.
+KdTree large_tree() {
+  constexpr uint32_t kLevels = 15, kChain = 48;
   KdTree tree;
-  tree.stats.triangles = 0;
+  tree.stats.triangles = 1;
   struct Builder {
     KdTree& tree;
-    void add(uint32_t depth, uint32_t levels) {
+    void add(uint32_t depth) {
       const uint32_t index = static_cast<uint32_t>(tree.nodes.size());
-      if (depth == levels) {
-        tree.nodes.own().push_back(KdNode{0, KD_LEAF_TAG});
+      if (depth == kLevels + kChain) {
+        tree.nodes.own().push_back(add_one_triangle_leaf(tree));
+        return;
+      }
+      if (depth >= kLevels) {
+        tree.nodes.own().push_back(KdNode{0, (depth % 2 ? KD_ABOVE_EMPTY : KD_BELOW_EMPTY) | depth % 3});
+        add(depth + 1);
+        if (depth % 2 == 0) tree.nodes.own()[index].header |= (index + 1) << KD_CHILD_SHIFT;
         return;
       }
       tree.nodes.own().push_back(KdNode{0, depth % 3});
-      add(depth + 1, levels);
-      tree.nodes.own()[index].header = static_cast<uint32_t>(tree.nodes.size()) << 2 | depth % 3;
-      add(depth + 1, levels);
+      add(depth + 1);
+      tree.nodes.own()[index].header |= static_cast<uint32_t>(tree.nodes.size()) << KD_CHILD_SHIFT;
+      add(depth + 1);
     }
   } builder{tree};
-  builder.add(0, levels);
+  builder.add(0);
   return tree;
 }
 
 TEST_F(KdTreeFile, LargeTreesAreCheckedThroughout) {
-  const KdTree intact = complete_tree(20);
+  const KdTree intact = large_tree();
   write_tree(path("intact.kdtree"), intact);
   EXPECT_EQ(read_error(path("intact.kdtree")), "");
-  size_t in_near_half = intact.nodes.size() / 4;
-  while (kd_node_is_leaf(intact.nodes[in_near_half])) ++in_near_half;
-  for (const size_t damaged : {in_near_half, intact.nodes.size() - 3}) {
+  auto two_children = [&](size_t index) {
+    const KdNode node = intact.nodes[index];
+    return !kd_node_is_leaf(node) && !kd_node_below_empty(node) && !kd_node_above_empty(node);
+  };
+  size_t in_near_half = intact.nodes.size() / 4, in_far_half = intact.nodes.size() - 3;
+  while (!two_children(in_near_half)) ++in_near_half;
+  while (!two_children(in_far_half)) --in_far_half;
+  ASSERT_GT(in_far_half, intact.nodes.size() / 2);
+  for (const size_t damaged : {in_near_half, in_far_half}) {
     KdTree tree = intact;
-    ASSERT_FALSE(kd_node_is_leaf(tree.nodes[damaged])) << damaged;
-    tree.nodes.own()[damaged].header = static_cast<uint32_t>(damaged + 1) << 2 | kd_node_axis(tree.nodes[damaged]);
+    tree.nodes.own()[damaged].header =
+        static_cast<uint32_t>(damaged + 1) << KD_CHILD_SHIFT | kd_node_axis(tree.nodes[damaged]);
     write_tree(path("damaged.kdtree"), tree);
     EXPECT_NE(read_error(path("damaged.kdtree")).find("node " + std::to_string(damaged) + " has an invalid far child"),
               std::string::npos)
         << read_error(path("damaged.kdtree"));
     tree = intact;
-    tree.nodes.own()[damaged] = KdNode{0, KD_LEAF_TAG};  // a leaf where an inner node was: its subtree is left over
+    tree.nodes.own()[damaged] = add_one_triangle_leaf(tree);  // a leaf where an inner node was: its subtree is left over
     write_tree(path("damaged.kdtree"), tree);
     EXPECT_NE(read_error(path("damaged.kdtree")), "") << "inner node " << damaged << " made a leaf";
   }
 }
 
 TEST_F(KdTreeFile, TreeDeeperThanTheFullStackIsRejected) {
-  // A chain of inner nodes whose near child is a leaf: depth 70.
+  // A chain of 70 inner nodes, each with an empty above child, then a leaf: depth 70.
   KdTree tree;
-  tree.stats.triangles = 0;
-  for (uint32_t level = 0; level < 70; ++level) {
-    const uint32_t index = static_cast<uint32_t>(tree.nodes.size());
-    tree.nodes.own().push_back(KdNode{0, (index + 2) << 2 | 0u});
-    tree.nodes.own().push_back(KdNode{0, KD_LEAF_TAG});
-  }
-  tree.nodes.own().push_back(KdNode{0, KD_LEAF_TAG});
+  tree.stats.triangles = 1;
+  for (uint32_t level = 0; level < 70; ++level) tree.nodes.own().push_back(KdNode{0, KD_ABOVE_EMPTY});
+  tree.nodes.own().push_back(add_one_triangle_leaf(tree));
   write_tree(path("deep.kdtree"), tree);
   EXPECT_NE(read_error(path("deep.kdtree")).find("deeper"), std::string::npos) << read_error(path("deep.kdtree"));
+  tree.nodes.own().erase(tree.nodes.own().begin(), tree.nodes.own().begin() + (70 - KD_MAX_TREE_DEPTH));
+  write_tree(path("deepest.kdtree"), tree);
+  EXPECT_EQ(read_error(path("deepest.kdtree")), "") << "a leaf at depth " << KD_MAX_TREE_DEPTH;
 }
 
 TEST_F(KdTreeFile, AKeyThatDoesNotMatchTheSettingsIsDamage) {

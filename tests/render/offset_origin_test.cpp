@@ -50,7 +50,7 @@ TEST(OffsetOrigin, ShadowRaysFromAWallAtZeroDoNotMeetItAgain) {
   }
   for (const KdTree& tree : trees) {
     std::vector<uint8_t> occluded;
-    PreparedTraversal(tree).any(rays, occluded);
+    trace_any(tree, rays, occluded);
     size_t blocked = 0;
     for (uint8_t o : occluded) blocked += o;
     EXPECT_EQ(blocked, 0u) << "of " << rays.size() << " shadow rays, tree of " << tree.stats.leaves << " leaves";

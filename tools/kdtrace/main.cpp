@@ -13,7 +13,6 @@
 #include "device_option.h"
 #include "tool_main.h"
 
-#include <optional>
 #include <string>
 
 int main(int argc, char** argv) {
@@ -38,16 +37,11 @@ int main(int argc, char** argv) {
     const std::vector<RayRecord> rays =
         kdtrace::rays_to_trace(o, scene_arrays ? &read.scene : nullptr, tree);
     const kdray::TraceOptions options = kdtrace::traversal_options(o, host);
-    // The host traversal's set-up (the empty-leaf bits), done once for a host run and for the
-    // counting pass of --json.
-    std::optional<kdray::PreparedTraversal> prepared;
-    if (host || o.flags.json) prepared.emplace(tree);
-    const kdtrace::TraceRun run =
-        kdtrace::trace_on(host ? &*prepared : nullptr, tree, rays, options, kdtrace::opencl_selection(o));
+    const kdtrace::TraceRun run = kdtrace::trace_on(host, tree, rays, options, kdtrace::opencl_selection(o));
     if (!o.hits_path.empty()) kdray::write_hits(o.hits_path, run.hits);
 
     if (o.flags.json) {
-      const kdray::TraversalWork work = kdtrace::count_work(*prepared, rays, options.threads);
+      const kdray::TraversalWork work = kdtrace::count_work(tree, rays, options.threads);
       kdray::tool::print_json(kdtrace::trace_json(o, host, rays.size(), run, work));
     } else if (!o.flags.quiet) {
       kdtrace::print_trace(host, rays.size(), run);

@@ -22,29 +22,27 @@ std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene* scene
   return rays;
 }
 
-TraceRun trace_on(const kdray::PreparedTraversal* host_traversal, const kdray::KdTree& tree,
-                  const std::vector<RayRecord>& rays, const kdray::TraceOptions& options,
-                  kdray::DeviceSelection opencl_device) {
+TraceRun trace_on(bool host, const kdray::KdTree& tree, const std::vector<RayRecord>& rays,
+                  const kdray::TraceOptions& options, kdray::DeviceSelection opencl_device) {
   TraceRun run;
   const double cpu_start = kdray::tool::cpu_seconds();
   const auto start = kdray::Clock::now();
-  if (host_traversal) {
-    host_traversal->closest(rays, run.hits, options);
+  if (host) {
+    kdray::trace_closest(tree, rays, run.hits, options);
     run.traversal = options.path;
   } else {
     opencl_device.short_stack_size = kdray::kernel_stack_size(options.stack);
     run.hits = kdray::trace_rays_opencl(tree, rays, opencl_device, &run.opencl);
     run.traversal = run.opencl.traversal;
   }
-  run.seconds = host_traversal ? kdray::seconds_since(start) : run.opencl.trace_seconds;
+  run.seconds = host ? kdray::seconds_since(start) : run.opencl.trace_seconds;
   run.cpu_seconds = kdray::tool::cpu_seconds() - cpu_start;
   return run;
 }
 
-kdray::TraversalWork count_work(const kdray::PreparedTraversal& traversal, const std::vector<RayRecord>& rays,
-                                unsigned threads) {
+kdray::TraversalWork count_work(const kdray::KdTree& tree, const std::vector<RayRecord>& rays, unsigned threads) {
   std::vector<HitRecord> counted_hits;
-  return traversal.count_work(rays, counted_hits, {threads, kdray::TraversalStack::Short});
+  return kdray::count_traversal_work(tree, rays, counted_hits, {threads, kdray::TraversalStack::Short});
 }
 
 }  // namespace kdtrace

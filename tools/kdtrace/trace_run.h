@@ -31,16 +31,13 @@ bool needs_scene_arrays(const Options& o);
 // may be null unless needs_scene_arrays.
 std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene* scene, const kdray::KdTree& tree);
 
-// On the host with `host_traversal` (prepared beforehand: its set-up is not part of the rate),
-// else on the OpenCL device (opencl_selection).
-TraceRun trace_on(const kdray::PreparedTraversal* host_traversal, const kdray::KdTree& tree,
-                  const std::vector<RayRecord>& rays, const kdray::TraceOptions& options,
-                  kdray::DeviceSelection opencl_device);
+// On the host, else on the OpenCL device (opencl_selection).
+TraceRun trace_on(bool host, const kdray::KdTree& tree, const std::vector<RayRecord>& rays,
+                  const kdray::TraceOptions& options, kdray::DeviceSelection opencl_device);
 
 // Per-ray work from a second, counting pass of the same traversal on the CPU (kept out of the
 // timed run); the kernel runs the same code, so its hits and work are the same. The count is of
 // the default traversal (the fast path where it applies) whatever --traversal says.
-kdray::TraversalWork count_work(const kdray::PreparedTraversal& traversal, const std::vector<RayRecord>& rays,
-                                unsigned threads);
+kdray::TraversalWork count_work(const kdray::KdTree& tree, const std::vector<RayRecord>& rays, unsigned threads);
 
 }  // namespace kdtrace

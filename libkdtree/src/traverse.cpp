@@ -91,6 +91,35 @@ TraversalWork count_traversal_work(const KdTree& tree, const std::vector<RayReco
   return work;
 }
 
+namespace {
+
+// The array copied into memory of its own, in parallel pieces of a huge page each: the pages'
+// first touches (faults, zeroing) are most of the copy's time, and they run on every thread.
+template <typename T>
+void copy_out_of_file(TreeArray<T>& array) {
+  constexpr size_t kPiece = (size_t{2} << 20) / sizeof(T);
+  TraversalArray<T> copy;
+  copy.resize(array.size());
+  const T* from = array.data();
+  tbb::parallel_for(size_t{0}, (array.size() + kPiece - 1) / kPiece, [&](size_t piece) {
+    const size_t begin = piece * kPiece, end = std::min(array.size(), begin + kPiece);
+    std::copy(from + begin, from + end, copy.data() + begin);
+  });
+  array = TreeArray<T>(std::move(copy));
+}
+
+}  // namespace
+
+bool copy_tree_for_rays(KdTree& tree, size_t rays, unsigned threads) {
+  const uint64_t bytes = tree.nodes.size() * sizeof(KdNode) + tree.leaf_blocks.size() * sizeof(uint32_t);
+  if (!tree.nodes.mapped() || rays < bytes / kTreeBytesPerRay) return false;
+  run_with_threads(threads, [&] {
+    copy_out_of_file(tree.nodes);
+    copy_out_of_file(tree.leaf_blocks);
+  });
+  return true;
+}
+
 HitRecord intersect_closest(const KdTree& tree, const RayRecord& ray, TraversalStack stack) {
   HitRecord hit;
   variant_of(stack).closest(arrays_of(tree), &ray, &hit, 1);

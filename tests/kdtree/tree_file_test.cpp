@@ -4,6 +4,7 @@
 
 #include <kdray/container_file.h>
 #include <kdray/kdtree.h>
+#include <kdray/traverse.h>
 
 #include <test_corpus.h>
 
@@ -151,6 +152,27 @@ TEST_F(KdTreeFile, AReadTreeOutlivesItsFileBeingReplaced) {
   EXPECT_FALSE(back.nodes.mapped());
   EXPECT_TRUE(back.leaf_blocks.mapped());
   EXPECT_TRUE(test::same_tree_bytes(read_tree(path("a.kdtree")), other));
+}
+
+// A read tree is copied out of its file for rays enough to repay the copy, and only then; the
+// copy is the same tree, and one in memory already is not copied again.
+TEST_F(KdTreeFile, AReadTreeIsCopiedOutOfItsFileForManyRays) {
+  write_tree(path("a.kdtree"), tree_);
+  KdTree tree = read_tree(path("a.kdtree"));
+  const uint64_t bytes = tree.nodes.size() * sizeof(KdNode) + tree.leaf_blocks.size() * sizeof(uint32_t);
+  const size_t enough = bytes / kTreeBytesPerRay;
+  ASSERT_GT(enough, 1u);
+  EXPECT_FALSE(copy_tree_for_rays(tree, enough - 1));
+  EXPECT_TRUE(tree.nodes.mapped());
+  EXPECT_TRUE(tree.leaf_blocks.mapped());
+  for (unsigned threads : {1u, 2u}) {
+    KdTree copied = read_tree(path("a.kdtree"));
+    EXPECT_TRUE(copy_tree_for_rays(copied, enough, threads));
+    EXPECT_FALSE(copied.nodes.mapped());
+    EXPECT_FALSE(copied.leaf_blocks.mapped());
+    EXPECT_TRUE(test::same_tree_bytes(copied, tree_));
+    EXPECT_FALSE(copy_tree_for_rays(copied, SIZE_MAX)) << "a tree in memory already";
+  }
 }
 
 TEST_F(KdTreeFile, SameTreeGivesTheSameBytes) {

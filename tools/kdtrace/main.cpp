@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
       });
     else
       read.tree = kdray::read_tree_for_scene(o.scene_path, o.tree_path);
-    const kdray::KdTree& tree = read.tree;
+    kdray::KdTree& tree = read.tree;
     const std::vector<RayRecord> rays =
         kdtrace::rays_to_trace(o, scene_arrays ? &read.scene : nullptr, tree);
     const kdray::TraceOptions options = kdtrace::traversal_options(o, host);

@@ -22,9 +22,13 @@ std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene* scene
   return rays;
 }
 
-TraceRun trace_on(bool host, const kdray::KdTree& tree, const std::vector<RayRecord>& rays,
+TraceRun trace_on(bool host, kdray::KdTree& tree, const std::vector<RayRecord>& rays,
                   const kdray::TraceOptions& options, kdray::DeviceSelection opencl_device) {
   TraceRun run;
+  if (host) {
+    const auto copy_start = kdray::Clock::now();
+    if (kdray::copy_tree_for_rays(tree, rays.size(), options.threads)) run.tree_copy_seconds = kdray::seconds_since(copy_start);
+  }
   const double cpu_start = kdray::tool::cpu_seconds();
   const auto start = kdray::Clock::now();
   if (host) {

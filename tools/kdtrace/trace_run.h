@@ -18,6 +18,7 @@ struct TraceRun {
   std::vector<HitRecord> hits;
   double seconds = 0;      // tracing only: for OpenCL the kernel time, rays already on the device
   double cpu_seconds = 0;  // user + system: with the wall time, tells a busy machine
+  double tree_copy_seconds = -1;  // the host's copy of a mapped tree (copy_tree_for_rays); -1: none
   kdray::TraversalPath traversal = kdray::TraversalPath::FastWhereSafe;  // the one that ran
   kdray::TraceOpenClStats opencl;
 };
@@ -31,8 +32,9 @@ bool needs_scene_arrays(const Options& o);
 // may be null unless needs_scene_arrays.
 std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene* scene, const kdray::KdTree& tree);
 
-// On the host, else on the OpenCL device (opencl_selection).
-TraceRun trace_on(bool host, const kdray::KdTree& tree, const std::vector<RayRecord>& rays,
+// On the host (the tree first copied out of its file when the rays repay it), else on the
+// OpenCL device (opencl_selection).
+TraceRun trace_on(bool host, kdray::KdTree& tree, const std::vector<RayRecord>& rays,
                   const kdray::TraceOptions& options, kdray::DeviceSelection opencl_device);
 
 // Per-ray work from a second, counting pass of the same traversal on the CPU (kept out of the

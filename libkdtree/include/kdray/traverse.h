@@ -61,6 +61,15 @@ void trace_any(const KdTree& tree, const std::vector<RayRecord>& rays, std::vect
 TraversalWork count_traversal_work(const KdTree& tree, const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
                                    const TraceOptions& options = {});
 
+// Copies the arrays of a tree read from a file (they view its mapping) into memory of its own
+// when `rays` rays are to be traced on the host, and returns whether it did. That memory is on
+// huge pages where the kernel gives them (TraversalArray), while a page cache may hold the file
+// in 4 KiB pages, on which random rays miss the TLB at nearly every node. The copy is a pass
+// over the tree (on `threads` threads, 0: all), so it is made only for rays enough to repay it:
+// one per kTreeBytesPerRay bytes of tree.
+constexpr uint64_t kTreeBytesPerRay = 128;
+bool copy_tree_for_rays(KdTree& tree, size_t rays, unsigned threads = 0);
+
 // One ray, on the calling thread: for tests and single queries; batches belong in trace_closest.
 HitRecord intersect_closest(const KdTree& tree, const RayRecord& ray, TraversalStack stack = TraversalStack::Short);
 

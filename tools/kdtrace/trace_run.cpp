@@ -27,7 +27,8 @@ TraceRun trace_on(bool host, kdray::KdTree& tree, const std::vector<RayRecord>& 
   TraceRun run;
   if (host) {
     const auto copy_start = kdray::Clock::now();
-    if (kdray::copy_tree_for_rays(tree, rays.size(), options.threads)) run.tree_copy_seconds = kdray::seconds_since(copy_start);
+    if (kdray::copy_tree_for_rays(tree, rays.size(), options.threads))
+      run.tree_copy_seconds = kdray::seconds_since(copy_start);
   }
   const double cpu_start = kdray::tool::cpu_seconds();
   const auto start = kdray::Clock::now();

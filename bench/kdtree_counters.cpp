@@ -115,7 +115,8 @@ int main(int argc, char** argv) {
     // Leaves by triangle count (0, 1, 2, 3, 4 or more): what a compact leaf encoding would save.
     uint64_t leaves_by_count[5] = {tree.stats.empty_leaves};
     for (const KdNode& node : tree.nodes)
-      if (kd_node_is_leaf(node) && kd_leaf_count(node) > 0) ++leaves_by_count[std::min<uint32_t>(kd_leaf_count(node), 4)];
+      if (kd_node_is_leaf(node) && kd_leaf_count(node) > 0)
+        ++leaves_by_count[std::min<uint32_t>(kd_leaf_count(node), 4)];
     const nlohmann::json out = {
         {"leaves_by_triangle_count", leaves_by_count},
         {"camera", count_rays(scene, tree, kdray::camera_rays(scene, 512, 384))},

@@ -10,7 +10,8 @@
 #define KD_TRACE_VALUE_ARG(type, name) type name,
 __kernel void kd_trace_closest(KD_TRACE_ARGS(KD_TRACE_BUFFER_ARG, KD_TRACE_BUFFER_ARG, KD_TRACE_VALUE_ARG)
                                    __global uint* next_ray) {
-  const KdSceneView scene = kd_scene_view(nodes, leaf_blocks, bounds_min.x, bounds_min.y, bounds_min.z, bounds_max.x, bounds_max.y, bounds_max.z);
+  const KdSceneView scene = kd_scene_view(nodes, leaf_blocks, bounds_min.x, bounds_min.y, bounds_min.z,
+                                          bounds_max.x, bounds_max.y, bounds_max.z);
   for (;;) {
     uint first = atomic_add(next_ray, KD_TRACE_BATCH);
     if (first >= ray_count) break;

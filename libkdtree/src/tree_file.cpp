@@ -178,7 +178,8 @@ void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end,
     const uint32_t far_valid =
         (above_empty & static_cast<uint32_t>(far == 0)) |
         ((above_empty ^ 1u) & static_cast<uint32_t>(far < end) &
-         ((below_empty & static_cast<uint32_t>(far == index + 1)) | ((below_empty ^ 1u) & static_cast<uint32_t>(far > index + 1))));
+         ((below_empty & static_cast<uint32_t>(far == index + 1)) |
+          ((below_empty ^ 1u) & static_cast<uint32_t>(far > index + 1))));
     const uint32_t inner_valid = far_valid & ((below_empty & above_empty) ^ 1u) &
                                  static_cast<uint32_t>(depth < KD_MAX_TREE_DEPTH) & static_cast<uint32_t>(finite_split);
     // A leaf of no triangles is a whole empty tree's root; elsewhere its parent marks it.

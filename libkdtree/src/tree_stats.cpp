@@ -76,7 +76,8 @@ class Walk {
     if (above_empty)
       add_leaf(item.depth + 1, 0, 0.0, 0.0, totals);
     else
-      children[count++] = {kd_node_far_child(node), item.depth + 1, weight, detail::above_plane(item.voxel, axis, split)};
+      children[count++] = {kd_node_far_child(node), item.depth + 1, weight,
+                           detail::above_plane(item.voxel, axis, split)};
     return count;
   }
 

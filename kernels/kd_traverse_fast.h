@@ -64,7 +64,9 @@ KD_INLINE int kd_traverse_fast(const KdSceneView* scene, const KdRay* ray, float
       const kd_u32 down = (descending >> axis) & 1u;
       const kd_u32 first = down ? above : below;
       const kd_u32 second = down ? below : above;
-      /* The header's empty bit of the first child, and of the second. */
+      /* The header's empty bit of the first child, and of the second. Picked here by selects
+       * rather than through kd_node_child and kd_node_child_empty: GCC makes of those a longer
+       * step (bench/LOG.md, ".kdtree version 5"), and this loop is most of a trace. */
       const kd_u32 first_bit = down ? KD_ABOVE_EMPTY : KD_BELOW_EMPTY;
       const kd_u32 first_empty = node.header & first_bit;
       const kd_u32 second_empty = node.header & (first_bit ^ (KD_BELOW_EMPTY | KD_ABOVE_EMPTY));

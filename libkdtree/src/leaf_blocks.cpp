@@ -114,7 +114,8 @@ LeafBlockPlan plan_leaf_blocks(const Scene& scene, TraversalArray<KdNode>& nodes
   if (plan.size_words() > UINT32_MAX)
     throw Error("", "the tree's leaf blocks would take " + std::to_string(plan.size_words()) +
                         " words, more than the 32-bit leaf payloads can address");
-  // Payloads in node order: each leaf's block start, an empty leaf (an empty scene's root) the next block's.
+  // Payloads in node order: each leaf's block start; the one empty leaf (an empty scene's root)
+  // the next block's.
   size_t next_leaf = 0;
   for (size_t n = 0; n < nodes.size(); ++n) {
     if (!kd_node_is_leaf(nodes[n])) continue;

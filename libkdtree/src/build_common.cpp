@@ -91,26 +91,50 @@ constexpr uint64_t kRunCounts[4] = {1, 1 | uint64_t{1} << 32, uint64_t{1} << 32,
 void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, uint64_t triangles,
                 const CostModel& cost, SplitChoice& best) {
   const SplitAreas areas(voxel, axis);
-  if (!areas.has_area()) return;
+  if (!areas.has_area() || count == 0) return;
   uint64_t n_left = 0, n_right = triangles;
   // A local copy: `best` might alias the events, which would force reloads.
   SplitChoice best_here = best;
   size_t i = 0;
-  while (i < count) {
-    // Events of one position come ends first, then planar, then starts (the event order); the
-    // run's counts are one sum, without a branch on the type. Planar events are in both halves.
-    const float position = events[i].position;
+  // Events of one position come ends first, then planar, then starts (the event order); a
+  // run's counts are one sum, without a branch on the type. Planar events are in both halves.
+  uint64_t leaving_right = 0, joining_left = 0, planar = 0;
+  auto scan_run = [&](float position) {
     const size_t run_start = i;
     uint64_t counts = 0;
     do {
       counts += kRunCounts[events[i].type()];
       ++i;
     } while (i < count && events[i].position == position);
-    const uint64_t leaving_right = counts & 0xffffffffu;
-    const uint64_t joining_left = counts >> 32;
-    const uint64_t planar = leaving_right + joining_left - (i - run_start);
+    leaving_right = counts & 0xffffffffu;
+    joining_left = counts >> 32;
+    planar = leaving_right + joining_left - (i - run_start);
+  };
+  // The first run, where a side may be empty and the plane may be the voxel's face.
+  float position = events[0].position;
+  scan_run(position);
+  n_right -= leaving_right;
+  consider_split(cost, areas, axis, position, n_left, n_right, planar, best_here);
+  n_left += joining_left;
+  while (i < count) {
+    position = events[i].position;
+    scan_run(position);
     n_right -= leaving_right;
-    consider_split(cost, areas, axis, position, n_left, n_right, planar, best_here);
+    if (i == count || planar != 0) {
+      consider_split(cost, areas, axis, position, n_left, n_right, planar, best_here);
+    } else {
+      // A run between the first and the last lies strictly inside the voxel (positions are
+      // sorted and within it), with a triangle on each side: the first run holds a start or a
+      // planar event, the last an end or a planar one. So its costing needs neither the
+      // voxel-face case of the areas nor the empty bonus, and a first candidate exists:
+      // without planar triangles, consider_split's arithmetic without its branches.
+      const double p_left = (areas.cross + (position - areas.lo) * areas.girth) * areas.inverse_half_area;
+      const double p_right = (areas.cross + (areas.hi - position) * areas.girth) * areas.inverse_half_area;
+      const double split_cost =
+          cost.traversal + cost.intersection * (p_left * static_cast<double>(static_cast<int64_t>(n_left)) +
+                                                p_right * static_cast<double>(static_cast<int64_t>(n_right)));
+      if (split_cost < best_here.cost) best_here = SplitChoice{split_cost, axis, position, true, n_left, n_right};
+    }
     n_left += joining_left;
   }
   best = best_here;

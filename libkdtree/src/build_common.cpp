@@ -48,9 +48,7 @@ Box3 above_plane(const Box3& voxel, int axis, float position) {
 
 
 double CostModel::split_cost(double p_left, double p_right, uint64_t n_left, uint64_t n_right) const {
-  // Counts are below 2^62: the signed conversion is exact and cheaper than the unsigned one.
-  const double cost = traversal + intersection * (p_left * static_cast<double>(static_cast<int64_t>(n_left)) +
-                                                   p_right * static_cast<double>(static_cast<int64_t>(n_right)));
+  const double cost = split_cost_both_sides(p_left, p_right, n_left, n_right);
   // Only the first and last candidates of a sweep can have an empty side: the others skip
   // choosing lambda (1, whose product is exact).
   if (n_left != 0 && n_right != 0) return cost;
@@ -128,11 +126,8 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
       // planar event, the last an end or a planar one. So its costing needs neither the
       // voxel-face case of the areas nor the empty bonus, and a first candidate exists:
       // without planar triangles, consider_split's arithmetic without its branches.
-      const double p_left = (areas.cross + (position - areas.lo) * areas.girth) * areas.inverse_half_area;
-      const double p_right = (areas.cross + (areas.hi - position) * areas.girth) * areas.inverse_half_area;
-      const double split_cost =
-          cost.traversal + cost.intersection * (p_left * static_cast<double>(static_cast<int64_t>(n_left)) +
-                                                p_right * static_cast<double>(static_cast<int64_t>(n_right)));
+      const double split_cost = cost.split_cost_both_sides(areas.below_inside(position), areas.above_inside(position),
+                                                           n_left, n_right);
       if (split_cost < best_here.cost) best_here = SplitChoice{split_cost, axis, position, true, n_left, n_right};
     }
     n_left += joining_left;

@@ -73,6 +73,12 @@ struct CostModel {
   // 0 (cost_model_of(settings)): references are free, for costing finished trees.
   double reference_price = 0;
   double split_cost(double p_left, double p_right, uint64_t n_left, uint64_t n_right) const;
+  // split_cost for a split with triangles on both sides, where no empty bonus applies.
+  double split_cost_both_sides(double p_left, double p_right, uint64_t n_left, uint64_t n_right) const {
+    // Counts are below 2^62: the signed conversion is exact and cheaper than the unsigned one.
+    return traversal + intersection * (p_left * static_cast<double>(static_cast<int64_t>(n_left)) +
+                                       p_right * static_cast<double>(static_cast<int64_t>(n_right)));
+  }
   double leaf_cost(uint64_t n) const { return intersection * static_cast<double>(n); }
   // Whether `split` of a node of `n` triangles in `voxel` is taken: it must cost less than the
   // leaf, by more than the price of the references it adds.
@@ -173,12 +179,11 @@ struct SplitAreas {
   // False for a voxel without area, where no split can pay.
   bool has_area() const { return half_area > 0.0; }
   // A child that is the whole voxel gives exactly 1 (the empty bonus depends on it).
-  double below(float position) const {
-    return position == hi ? 1.0 : (cross + (position - lo) * girth) * inverse_half_area;
-  }
-  double above(float position) const {
-    return position == lo ? 1.0 : (cross + (hi - position) * girth) * inverse_half_area;
-  }
+  double below(float position) const { return position == hi ? 1.0 : below_inside(position); }
+  double above(float position) const { return position == lo ? 1.0 : above_inside(position); }
+  // The same for a position strictly inside the voxel.
+  double below_inside(float position) const { return (cross + (position - lo) * girth) * inverse_half_area; }
+  double above_inside(float position) const { return (cross + (hi - position) * girth) * inverse_half_area; }
 
   double cross, girth, lo, hi, half_area, inverse_half_area;
 };

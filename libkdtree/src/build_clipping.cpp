@@ -145,14 +145,22 @@ class ClippedPolygon {
 
   // Clips by the two planes of `axis` of `voxel`; false when nothing is left.
   bool clip_axis(const Box3& voxel, int axis) {
+    clip_min(voxel, axis);
+    clip_max(voxel, axis);
+    return !empty();
+  }
+  // Clips by the lower plane of `axis` of `voxel` (keeping what is above it), or the upper.
+  void clip_min(const Box3& voxel, int axis) {
     if (!clearly_above(triangle_box_.min[axis], voxel.min[axis]) &&
         clip_polygon<true>(buffers_[current_], axis, voxel.min[axis], buffers_[1 - current_]))
       current_ = 1 - current_;
+  }
+  void clip_max(const Box3& voxel, int axis) {
     if (!clearly_above(voxel.max[axis], triangle_box_.max[axis]) &&
         clip_polygon<false>(buffers_[current_], axis, voxel.max[axis], buffers_[1 - current_]))
       current_ = 1 - current_;
-    return buffers_[current_].size != 0;
   }
+  bool empty() const { return buffers_[current_].size == 0; }
 
   // The polygon's bounds rounded outwards to float, within `voxel`.
   bool bounds_in(const Box3& voxel, Box3& out) const {
@@ -194,12 +202,6 @@ bool triangle_bounds_in_voxel(const Scene& scene, uint32_t triangle, const Box3&
   return finish_clipping(polygon, voxel, 0, out);
 }
 
-bool child_bounds(const Scene& scene, uint32_t triangle, const Box3& parent_bounds, const Box3& child_voxel,
-                  bool perfect_splits, Box3& out) {
-  if (perfect_splits) return triangle_bounds_in_voxel(scene, triangle, child_voxel, true, out);
-  return intersect_boxes(parent_bounds, child_voxel, out);
-}
-
 StraddlerBounds straddler_bounds(const Scene& scene, uint32_t triangle, const Box3& parent_bounds,
                                  const Box3 (&child_voxels)[2], int axis, bool perfect_splits) {
   StraddlerBounds result{};
@@ -215,16 +217,27 @@ StraddlerBounds straddler_bounds(const Scene& scene, uint32_t triangle, const Bo
     if (!clipped[c]) result.reaches[c] = intersect_boxes(box, child_voxels[c], result.bounds[c]);
   }
   if (!clipped[0] && !clipped[1]) return result;
-  // The planes of the axes before `axis` are the same for both voxels, and so is the polygon
-  // they leave.
+  // Every plane but the split is a plane of the parent voxel, the same for both children: the
+  // triangle is clipped by those once, and the polygon they leave by the split plane for each.
   ClippedPolygon shared(corners, box);
-  for (int k = 0; k < axis; ++k)
-    if (!shared.clip_axis(child_voxels[0], k)) return result;  // reaches stays false where clipped
+  for (int k = 0; k < 3; ++k) {
+    if (k == axis) {
+      shared.clip_min(child_voxels[0], k);
+      shared.clip_max(child_voxels[1], k);
+    } else {
+      shared.clip_axis(child_voxels[0], k);
+    }
+    if (shared.empty()) return result;  // reaches stays false where clipped
+  }
   if (clipped[0]) {
     ClippedPolygon below(shared);
-    result.reaches[0] = finish_clipping(below, child_voxels[0], axis, result.bounds[0]);
+    below.clip_max(child_voxels[0], axis);
+    result.reaches[0] = !below.empty() && below.bounds_in(child_voxels[0], result.bounds[0]);
   }
-  if (clipped[1]) result.reaches[1] = finish_clipping(shared, child_voxels[1], axis, result.bounds[1]);
+  if (clipped[1]) {
+    shared.clip_min(child_voxels[1], axis);
+    result.reaches[1] = !shared.empty() && shared.bounds_in(child_voxels[1], result.bounds[1]);
+  }
   return result;
 }
 

@@ -41,14 +41,11 @@ Box3 above_plane(const Box3& voxel, int axis, float position);
 bool triangle_bounds_in_voxel(const Scene& scene, uint32_t triangle, const Box3& voxel, bool perfect_splits,
                               Box3& out);
 
-// The same for a triangle whose bounds in the parent voxel are `parent_bounds`, when the
-// child voxel differs from the parent only on the split axis.
-bool child_bounds(const Scene& scene, uint32_t triangle, const Box3& parent_bounds, const Box3& child_voxel,
-                  bool perfect_splits, Box3& out);
-
 // The bounds of a triangle in both children of a split on `axis`, `child_voxels` below and above
-// it (they differ from the parent voxel only on `axis`): child_bounds for each, with the
-// clipping by the planes of the axes before `axis` done once for both.
+// it (they differ from the parent voxel only on `axis`), false where it leaves nothing. With
+// perfect splits, the triangle clipped by the parent voxel's planes once, then the polygon left
+// by the split plane for each child (Sutherland-Hodgman in double, rounded outwards to float);
+// without, its bounds in the parent voxel, `parent_bounds`, intersected with each child voxel.
 struct StraddlerBounds {
   bool reaches[2];
   Box3 bounds[2];

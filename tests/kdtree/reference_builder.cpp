@@ -35,10 +35,10 @@ class ResortingBuilder {
     classify(events[split.axis].data(), events[split.axis].size(), split, sides.data());
     const Box3 left_voxel = below_plane(voxel, split.axis, split.position);
     const Box3 right_voxel = above_plane(voxel, split.axis, split.position);
+    const Box3 child_voxels[2] = {left_voxel, right_voxel};
     std::vector<uint32_t> left, right;
     std::vector<Box3> left_bounds, right_bounds;
     for (size_t i = 0; i < n; ++i) {
-      Box3 child;
       if (sides[i] == kLeftOnly) {
         left.push_back(triangles[i]);
         left_bounds.push_back(bounds[i]);
@@ -46,13 +46,15 @@ class ResortingBuilder {
         right.push_back(triangles[i]);
         right_bounds.push_back(bounds[i]);
       } else {
-        if (child_bounds(scene_, triangles[i], bounds[i], left_voxel, settings_.perfect_splits, child)) {
+        const StraddlerBounds straddler =
+            straddler_bounds(scene_, triangles[i], bounds[i], child_voxels, split.axis, settings_.perfect_splits);
+        if (straddler.reaches[0]) {
           left.push_back(triangles[i]);
-          left_bounds.push_back(child);
+          left_bounds.push_back(straddler.bounds[0]);
         }
-        if (child_bounds(scene_, triangles[i], bounds[i], right_voxel, settings_.perfect_splits, child)) {
+        if (straddler.reaches[1]) {
           right.push_back(triangles[i]);
-          right_bounds.push_back(child);
+          right_bounds.push_back(straddler.bounds[1]);
         }
       }
     }

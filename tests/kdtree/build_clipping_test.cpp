@@ -60,6 +60,24 @@ Case straddling_cases(size_t count, uint32_t seed) {
   return result;
 }
 
+// Case t's split: its child voxels and the straddler's bounds in them; false when the triangle
+// does not straddle the split inside its voxel.
+struct Split {
+  Box3 children[2];
+  StraddlerBounds straddler;
+};
+bool split_of(const Case& cases, uint32_t t, Split& split) {
+  Box3 parent_bounds;
+  if (!triangle_bounds_in_voxel(cases.scene, t, cases.voxels[t], true, parent_bounds)) return false;
+  const int axis = cases.axes[t];
+  const float position = cases.positions[t];
+  if (!(parent_bounds.min[axis] < position && position < parent_bounds.max[axis])) return false;
+  split.children[0] = below_plane(cases.voxels[t], axis, position);
+  split.children[1] = above_plane(cases.voxels[t], axis, position);
+  split.straddler = straddler_bounds(cases.scene, t, parent_bounds, split.children, axis, true);
+  return true;
+}
+
 bool within_one_step(float a, float b) {
   return std::nextafter(a, -INFINITY) <= b && b <= std::nextafter(a, INFINITY);
 }
@@ -68,18 +86,13 @@ TEST(KdBuildClipping, StraddlersBoundsAreEachChildsClippedTriangle) {
   const Case cases = straddling_cases(3000, 7);
   size_t straddlers = 0, clipped_sides = 0;
   for (uint32_t t = 0; t < cases.voxels.size(); ++t) {
-    Box3 parent_bounds;
-    if (!triangle_bounds_in_voxel(cases.scene, t, cases.voxels[t], true, parent_bounds)) continue;
-    const int axis = cases.axes[t];
-    const float position = cases.positions[t];
-    if (!(parent_bounds.min[axis] < position && position < parent_bounds.max[axis])) continue;
+    Split split;
+    if (!split_of(cases, t, split)) continue;
     ++straddlers;
-    const Box3 children[2] = {below_plane(cases.voxels[t], axis, position),
-                              above_plane(cases.voxels[t], axis, position)};
-    const StraddlerBounds straddler = straddler_bounds(cases.scene, t, parent_bounds, children, axis, true);
+    const StraddlerBounds& straddler = split.straddler;
     for (int c = 0; c < 2; ++c) {
       Box3 from_scratch;
-      const bool reaches = triangle_bounds_in_voxel(cases.scene, t, children[c], true, from_scratch);
+      const bool reaches = triangle_bounds_in_voxel(cases.scene, t, split.children[c], true, from_scratch);
       ASSERT_EQ(straddler.reaches[c], reaches) << "triangle " << t << " child " << c;
       if (!reaches) continue;
       ++clipped_sides;
@@ -97,14 +110,10 @@ TEST(KdBuildClipping, StraddlersBoundsHoldTheTriangleInsideEachChild) {
   const Case cases = straddling_cases(1000, 11);
   constexpr int kSteps = 40;
   for (uint32_t t = 0; t < cases.voxels.size(); ++t) {
-    Box3 parent_bounds;
-    if (!triangle_bounds_in_voxel(cases.scene, t, cases.voxels[t], true, parent_bounds)) continue;
-    const int axis = cases.axes[t];
-    const float position = cases.positions[t];
-    if (!(parent_bounds.min[axis] < position && position < parent_bounds.max[axis])) continue;
-    const Box3 children[2] = {below_plane(cases.voxels[t], axis, position),
-                              above_plane(cases.voxels[t], axis, position)};
-    const StraddlerBounds straddler = straddler_bounds(cases.scene, t, parent_bounds, children, axis, true);
+    Split split;
+    if (!split_of(cases, t, split)) continue;
+    const Box3* children = split.children;
+    const StraddlerBounds& straddler = split.straddler;
     const Vec3* p[3];
     for (int corner = 0; corner < 3; ++corner) p[corner] = &cases.scene.positions[cases.scene.indices[3 * t + corner]];
     // Points of the triangle on a barycentric grid, in double: each one inside a child voxel

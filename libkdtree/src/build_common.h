@@ -292,8 +292,10 @@ std::array<Node, 2>& children_at_depth(uint32_t depth) {
   return children[depth];
 }
 
-// Nodes of at most this many triangles are built by build_small_subtree.
-constexpr size_t kSmallNodeTriangles = 32;
+// Nodes of at most this many triangles are built by build_small_subtree, whose fixed arrays
+// cost less per node than the general path's vectors: at 128 the build measured shorter than
+// at 32 or 64, and no shorter at 256 (bench/LOG.md, "Tree build, fifth pass").
+constexpr size_t kSmallNodeTriangles = 128;
 
 struct SmallBuildParameters {
   CostModel cost;

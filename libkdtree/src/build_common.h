@@ -285,11 +285,15 @@ struct Subtree {
 
 // Room for the two children, at `depth`, of a node that a depth-first build splits: per thread
 // and per depth, its arrays keep their capacity from node to node, so that building allocates
-// nothing once it is warm.
+// nothing once it is warm. A depth's room is made when a build first reaches it, so a thread
+// holds room only for the depths it builds at (the small-node path's fixed arrays are 20 KB a
+// depth, and it runs only deep in the tree).
 template <typename Node>
 std::array<Node, 2>& children_at_depth(uint32_t depth) {
-  thread_local std::vector<std::array<Node, 2>> children(BuildSettings::kMaxDepthLimit + 2);
-  return children[depth];
+  thread_local std::vector<std::unique_ptr<std::array<Node, 2>>> children(BuildSettings::kMaxDepthLimit + 2);
+  std::unique_ptr<std::array<Node, 2>>& room = children[depth];
+  if (!room) room = std::make_unique<std::array<Node, 2>>();
+  return *room;
 }
 
 // Nodes of at most this many triangles are built by build_small_subtree, whose fixed arrays

@@ -184,13 +184,6 @@ class ClippedPolygon {
   int current_ = 0;
 };
 
-// The rest of the clipping of `polygon` to `voxel`, from `axis` on.
-bool finish_clipping(ClippedPolygon& polygon, const Box3& voxel, int axis, Box3& out) {
-  for (int k = axis; k < 3; ++k)
-    if (!polygon.clip_axis(voxel, k)) return false;
-  return polygon.bounds_in(voxel, out);
-}
-
 }  // namespace
 
 bool triangle_bounds_in_voxel(const Scene& scene, uint32_t triangle, const Box3& voxel, bool perfect_splits,
@@ -199,7 +192,9 @@ bool triangle_bounds_in_voxel(const Scene& scene, uint32_t triangle, const Box3&
   const Box3 box = bounding_box(corners);
   if (!perfect_splits || contains(voxel, box)) return intersect_boxes(box, voxel, out);
   ClippedPolygon polygon(corners, box);
-  return finish_clipping(polygon, voxel, 0, out);
+  for (int k = 0; k < 3; ++k)
+    if (!polygon.clip_axis(voxel, k)) return false;
+  return polygon.bounds_in(voxel, out);
 }
 
 StraddlerBounds straddler_bounds(const Scene& scene, uint32_t triangle, const Box3& parent_bounds,

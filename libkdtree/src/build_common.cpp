@@ -108,7 +108,8 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
     joining_left = counts >> 32;
     planar = leaving_right + joining_left - (i - run_start);
   };
-  // The first run, where a side may be empty and the plane may be the voxel's face.
+  // The first run, where a side may be empty and the plane may be the voxel's face: peeled off
+  // the loop, which a per-run test for it made longer (bench/LOG.md, "Tree build, fifth pass").
   float position = events[0].position;
   scan_run(position);
   n_right -= leaving_right;

@@ -33,9 +33,8 @@ class ResortingBuilder {
     }
     std::vector<uint8_t> sides(n, kBothSides);
     classify(events[split.axis].data(), events[split.axis].size(), split, sides.data());
-    const Box3 left_voxel = below_plane(voxel, split.axis, split.position);
-    const Box3 right_voxel = above_plane(voxel, split.axis, split.position);
-    const Box3 child_voxels[2] = {left_voxel, right_voxel};
+    const Box3 child_voxels[2] = {below_plane(voxel, split.axis, split.position),
+                                  above_plane(voxel, split.axis, split.position)};
     std::vector<uint32_t> left, right;
     std::vector<Box3> left_bounds, right_bounds;
     for (size_t i = 0; i < n; ++i) {
@@ -58,8 +57,8 @@ class ResortingBuilder {
         }
       }
     }
-    out.add_inner(split.axis, split.position, [&] { build(left_voxel, depth + 1, left, left_bounds, out); },
-                  [&] { build(right_voxel, depth + 1, right, right_bounds, out); });
+    out.add_inner(split.axis, split.position, [&] { build(child_voxels[0], depth + 1, left, left_bounds, out); },
+                  [&] { build(child_voxels[1], depth + 1, right, right_bounds, out); });
   }
 
  private:

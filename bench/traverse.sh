@@ -4,7 +4,7 @@
 # Cornell box (32 triangles), the bunny (69k) and bunny_sub2 (1.1M). Prints Mrays/s (median of
 # $RUNS runs, the three tracers interleaved in each run), the ratio to Embree, and kdray's per-ray
 # work: inner-node steps, leaves, triangle tests (kdtrace --json) and instructions (callgrind over
-# the host build's kd_traverse, one thread, on 20000 rays of the same kind: random rays of seed 1,
+# the host build's trace_closest, one thread, on 20000 rays of the same kind: random rays of seed 1,
 # camera rays at 160x125; "-" without valgrind). Compiles bench/embree_trace.cpp itself (needs
 # libembree-dev); the project's CMake never builds it.
 #   BUILD=build RUNS=3 RAYS=1000000 THREADS=2 [MESHES="NAME=PATH ..."] bench/traverse.sh
@@ -28,10 +28,11 @@ fi
 field() { json_field "${@:2}" < "$1"; }
 # median_of VALUES...
 median_of() { printf "%s\n" "$@" | median; }
-# instructions_per_ray SCENE TREE RAYS COUNT: instructions kd_traverse executes per ray (host build).
+# instructions_per_ray SCENE TREE RAYS COUNT: instructions trace_closest executes per ray (host build,
+# in AVX2 lanes where kdtrace runs them; its chunking adds about 26 a ray).
 instructions_per_ray() {
   if ! command -v valgrind > /dev/null; then echo "-"; return; fi
-  valgrind --tool=callgrind --callgrind-out-file=/dev/null --toggle-collect='*::kd_traverse(*' \
+  valgrind --tool=callgrind --callgrind-out-file=/dev/null --toggle-collect='kdray::trace_closest(*' \
     "$KDTRACE" "$1" "$2" --rays "$3" --threads 1 --quiet 2>&1 |
     awk -v n="$4" '/Collected :/ {printf "%.0f", $NF / n}'
 }

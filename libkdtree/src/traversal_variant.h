@@ -37,6 +37,11 @@ const TraversalVariant& traversal_depth1_stack();
 const TraversalVariant& traversal_full_stack();
 const TraversalVariant& traversal_robust_short_stack();
 
+// Closest hits with the short stack and the fast path, like traversal_short_stack().closest, for
+// 16 rays at a time in AVX2 lanes (traversal_lanes.cpp): only where closest_in_lanes_supported().
+bool closest_in_lanes_supported();
+void closest_in_lanes(const TraversalArrays& arrays, const RayRecord* rays, HitRecord* hits, size_t count);
+
 // Closest hits with the short stack, like traversal_short_stack().closest, adding the work
 // done (kernels/kd_scene_view.h's counters): a build of its own, so the timed ones count nothing.
 struct TraversalCounts {

@@ -58,9 +58,16 @@ void trace_in_chunks(const detail::TraversalArrays& arrays, const std::vector<Ra
 
 }  // namespace
 
+bool traces_in_lanes(const KdTree& tree, const TraceOptions& options) {
+  return options.lanes && tree.nodes.size() > kLanesMinNodes && options.stack == TraversalStack::Short &&
+         options.path == TraversalPath::FastWhereSafe && detail::closest_in_lanes_supported();
+}
+
 void trace_closest(const KdTree& tree, const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
                    const TraceOptions& options) {
-  trace_in_chunks(arrays_of(tree), rays, hits, options.threads, variant_of(options.stack, options.path).closest);
+  const auto closest =
+      traces_in_lanes(tree, options) ? &detail::closest_in_lanes : variant_of(options.stack, options.path).closest;
+  trace_in_chunks(arrays_of(tree), rays, hits, options.threads, closest);
 }
 
 void trace_any(const KdTree& tree, const std::vector<RayRecord>& rays, std::vector<uint8_t>& occluded,

@@ -39,6 +39,10 @@ void add_options(CLI::App& app, Options& o) {
                  "robust (every ray takes the robust code; with the short stack only on the host), or auto (the "
                  "device's own: robust on a GPU, fast on a CPU). All give the same hits")
       ->check(CLI::IsMember({"auto", "fast", "robust"}))->capture_default_str()->group("Device");
+  app.add_flag("--no-lanes", o.no_lanes,
+               "Host: one ray at a time per thread, not 16 in AVX2 lanes (the same hits; lanes run where the CPU "
+               "has AVX2 and the tree is larger than a first-level cache)")
+      ->group("Device");
 }
 
 kdray::tool::DeviceKind checked_device(const Options& o) {
@@ -64,6 +68,7 @@ kdray::TraceOptions traversal_options(const Options& o, bool host) {
                   : o.stack_name == "full" ? kdray::TraversalStack::Full
                                            : kdray::TraversalStack::Short;
   options.path = kdray::parse_traversal_path(o.path_name).value_or(kdray::TraversalPath::FastWhereSafe);
+  options.lanes = !o.no_lanes;
   if (host && options.path == kdray::TraversalPath::Robust && options.stack != kdray::TraversalStack::Short)
     throw UsageError("--traversal robust on the host: with --stack short only");
   return options;

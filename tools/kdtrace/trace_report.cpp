@@ -33,7 +33,8 @@ nlohmann::json trace_json(const Options& o, bool host, size_t ray_count, const T
   if (host) {
     summary["device"] = "host";
     summary["threads"] = o.traversal.threads;
-    summary["variant"] = "cpu-one-ray-per-thread+prefetch";
+    summary["variant"] =
+        run.lanes ? "cpu-16-rays-per-thread-in-avx2-lanes+prefetch" : "cpu-one-ray-per-thread+prefetch";
     // Where the tree was traced: copied out of its file first (copy_tree_for_rays), or in place.
     summary["tree_memory"] = run.tree_copy_seconds >= 0 ? "copied" : "file mapping";
     if (run.tree_copy_seconds >= 0) summary["tree_copy_seconds"] = run.tree_copy_seconds;

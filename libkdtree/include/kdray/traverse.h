@@ -31,7 +31,17 @@ struct TraceOptions {
   unsigned threads = 0;  // 0: all hardware threads
   TraversalStack stack = TraversalStack::Short;
   TraversalPath path = TraversalPath::FastWhereSafe;
+  // trace_closest with the short stack and the fast path: 16 rays at a time per thread in AVX2
+  // lanes (the same hits) where traces_in_lanes says so; false: one ray at a time.
+  bool lanes = true;
 };
+
+// Whether trace_closest runs `options` on `tree` in AVX2 lanes: where the CPU has AVX2 and the
+// tree's nodes are more than kLanesMinNodes. A tree that small sits in a first-level data cache,
+// where a ray's node loads do not wait and one ray at a time is faster (bench/LOG.md, "Rays in
+// AVX2 lanes").
+constexpr size_t kLanesMinNodes = 4096;
+bool traces_in_lanes(const KdTree& tree, const TraceOptions& options);
 
 // Each triangle's three corners copied from the scene's positions, KD_TRIANGLE_FLOATS floats
 // (36 bytes) per triangle in triangle order: what shading reads of a hit triangle.

@@ -1,0 +1,108 @@
+// The host's closest hits in AVX2 lanes (libkdtree/src/traversal_lanes.cpp) are those of one ray
+// at a time, byte for byte: on random, hard-case and camera rays, rays from inside a closed mesh,
+// trees deeper than the short stack (rays that overflow it and are traced again) and trees of
+// every size, the ones too small for trace_closest to choose the lanes included.
+#include "test_scenes.h"
+#include "traversal_variant.h"
+
+#include <kdray/kdtree.h>
+#include <kdray/ray_sets.h>
+#include <kdray/traverse.h>
+
+#include <icosphere.h>
+#include <test_corpus.h>
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace kdray {
+namespace {
+
+std::vector<RayRecord> ray_mix(const Scene& scene, const KdTree& tree, uint64_t seed) {
+  std::vector<RayRecord> rays = random_rays(scene_bounds(scene), 6000, seed);
+  for (const std::vector<RayRecord>& more : {hard_case_rays(scene, tree, 6000, seed + 1), camera_rays(scene, 64, 48)})
+    rays.insert(rays.end(), more.begin(), more.end());
+  return rays;
+}
+
+// Traces `rays` both ways and reports the first ray whose hit record differs in any byte.
+void expect_lanes_match_one_ray_at_a_time(const KdTree& tree, const std::vector<RayRecord>& rays,
+                                          const std::string& name) {
+  detail::TraversalArrays arrays{};
+  arrays.nodes = tree.nodes.data();
+  arrays.leaf_blocks = tree.leaf_blocks.data();
+  for (int k = 0; k < 3; ++k) {
+    arrays.bounds_min[k] = (&tree.bounds.min.x)[k];
+    arrays.bounds_max[k] = (&tree.bounds.max.x)[k];
+  }
+  std::vector<HitRecord> one(rays.size()), lanes(rays.size());
+  detail::traversal_short_stack().closest(arrays, rays.data(), one.data(), rays.size());
+  detail::closest_in_lanes(arrays, rays.data(), lanes.data(), rays.size());
+  size_t differing = 0, first = 0, hits = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    hits += one[i].triangle != KD_NO_HIT;
+    if (std::memcmp(&one[i], &lanes[i], sizeof(HitRecord)) != 0 && differing++ == 0) first = i;
+  }
+  EXPECT_EQ(differing, 0u) << name << ": " << differing << " of " << rays.size() << " rays differ; first ray " << first
+                           << ": one at a time triangle " << one[first].triangle << " t " << one[first].t
+                           << ", lanes triangle " << lanes[first].triangle << " t " << lanes[first].t;
+  EXPECT_GT(hits, rays.size() / 10) << name << ": the rays must hit something to compare";
+}
+
+class TraversalLanes : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!detail::closest_in_lanes_supported()) GTEST_SKIP() << "this CPU has no AVX2";
+  }
+};
+
+TEST_F(TraversalLanes, SameHitsAsOneRayAtATimeOnGeneratedScenes) {
+  for (const auto& [name, scene] : {std::pair<std::string, Scene>{"box room", test::box_room()},
+                                    {"triangle soup", test::triangle_soup(4000, 5)},
+                                    {"coplanar grid", test::coplanar_grid(24)}}) {
+    const KdTree tree = build_kdtree(scene, BuildSettings{});
+    expect_lanes_match_one_ray_at_a_time(tree, ray_mix(scene, tree, 11), name);
+  }
+}
+
+TEST_F(TraversalLanes, SameHitsOnTheBunnyAndFromInsideIt) {
+  std::string path;
+  KDRAY_CORPUS_FILE(path, "bunny/bun_zipper.ply");
+  const Scene scene = test::mesh_file(path);
+  const KdTree tree = build_kdtree(scene, BuildSettings{});
+  ASSERT_GT(tree.nodes.size(), kLanesMinNodes) << "trace_closest must choose the lanes for this tree";
+  std::vector<RayRecord> rays = ray_mix(scene, tree, 21);
+  const Bounds bounds = scene_bounds(scene);
+  const Vec3 centre{(bounds.min.x + bounds.max.x) / 2, (bounds.min.y + bounds.max.y) / 2,
+                    (bounds.min.z + bounds.max.z) / 2};
+  const std::vector<RayRecord> inside = rays_toward_surface(scene, centre, 6000, 23);
+  rays.insert(rays.end(), inside.begin(), inside.end());
+  expect_lanes_match_one_ray_at_a_time(tree, rays, "bunny");
+
+  std::vector<HitRecord> chosen, one;
+  TraceOptions one_at_a_time;
+  one_at_a_time.lanes = false;
+  ASSERT_TRUE(traces_in_lanes(tree, TraceOptions{}));
+  ASSERT_FALSE(traces_in_lanes(tree, one_at_a_time));
+  trace_closest(tree, rays, chosen, TraceOptions{});
+  trace_closest(tree, rays, one, one_at_a_time);
+  EXPECT_EQ(std::memcmp(chosen.data(), one.data(), rays.size() * sizeof(HitRecord)), 0) << "trace_closest";
+}
+
+// A tessellated sphere's tree is deeper than the short stack: some rays overflow it, and those
+// are traced again from the start, as the scalar fast path does.
+TEST_F(TraversalLanes, SameHitsWhereTheShortStackOverflows) {
+  const Scene scene = test::icosphere_scene(5, {0, 0, 0}, 1.0f);
+  const KdTree tree = build_kdtree(scene, BuildSettings{});
+  const std::vector<RayRecord> rays = random_rays(scene_bounds(scene), 20000, 41);
+  std::vector<HitRecord> counted;
+  const TraversalWork work = count_traversal_work(tree, rays, counted);
+  ASSERT_GT(work.fast_path_restarts, 0u) << "some rays must overflow the short stack";
+  expect_lanes_match_one_ray_at_a_time(tree, rays, "icosphere");
+}
+
+}  // namespace
+}  // namespace kdray

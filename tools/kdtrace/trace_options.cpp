@@ -41,7 +41,7 @@ void add_options(CLI::App& app, Options& o) {
       ->check(CLI::IsMember({"auto", "fast", "robust"}))->capture_default_str()->group("Device");
   app.add_flag("--no-lanes", o.no_lanes,
                "Host: one ray at a time per thread, not 16 in AVX2 lanes (the same hits; lanes run where the CPU "
-               "has AVX2 and the tree is larger than a first-level cache)")
+               "has AVX2 and the tree has more than 256 nodes)")
       ->group("Device");
 }
 

@@ -37,10 +37,9 @@ struct TraceOptions {
 };
 
 // Whether trace_closest runs `options` on `tree` in AVX2 lanes: where the CPU has AVX2 and the
-// tree's nodes are more than kLanesMinNodes. A tree that small sits in a first-level data cache,
-// where a ray's node loads do not wait and one ray at a time is faster (bench/LOG.md, "Rays in
-// AVX2 lanes").
-constexpr size_t kLanesMinNodes = 4096;
+// tree has more than kLanesMinNodes nodes. A ray through a tree that small takes a few steps,
+// too few to repay handing it to a lane (bench/LOG.md, "Rays in AVX2 lanes").
+constexpr size_t kLanesMinNodes = 256;
 bool traces_in_lanes(const KdTree& tree, const TraceOptions& options);
 
 // Each triangle's three corners copied from the scene's positions, KD_TRIANGLE_FLOATS floats

@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -198,6 +199,27 @@ TEST_F(KdCli, KdtraceRejectsStaleTreesAndBadRayFiles) {
   EXPECT_EQ(run("kdtrace", path("room.kdscene") + " " + path("room.kdtree")).exit_code, 2);
   EXPECT_EQ(run("kdtrace", path("room.kdscene") + " " + path("room.kdtree") + " --generate random --device quantum").exit_code, 2);
   EXPECT_EQ(run("kdtrace", path("room.kdscene") + " " + path("room.kdtree") + " --generate random --device all").exit_code, 2);
+  const std::string random = path("room.kdscene") + " " + path("room.kdtree") + " --generate random";
+  EXPECT_EQ(run("kdtrace", random + " --device cpu --no-lanes").exit_code, 2) << "lanes are the host's";
+}
+
+// --no-lanes traces one ray at a time on the host, says so in --json, and writes the same hits.
+TEST_F(KdCli, KdtraceNoLanesWritesTheSameHits) {
+  ASSERT_EQ(run("kdbuild", path("room.kdscene") + " " + path("room.kdtree") + " --quiet").exit_code, 0);
+  const std::string trace =
+      path("room.kdscene") + " " + path("room.kdtree") + " --generate random --count 5000 --json";
+  const ToolRun chosen = run("kdtrace", trace + " --hits " + path("chosen.bin"));
+  const ToolRun one_ray = run("kdtrace", trace + " --no-lanes --hits " + path("one.bin"));
+  ASSERT_EQ(chosen.exit_code, 0) << chosen.err;
+  ASSERT_EQ(one_ray.exit_code, 0) << one_ray.err;
+  EXPECT_EQ(nlohmann::json::parse(one_ray.out).at("variant"), "cpu-one-ray-per-thread+prefetch");
+  const std::string variant = nlohmann::json::parse(chosen.out).at("variant");
+  EXPECT_TRUE(variant == "cpu-one-ray-per-thread+prefetch" ||
+              variant == "cpu-16-rays-per-thread-in-avx2-lanes+prefetch")
+      << variant;
+  const std::vector<HitRecord> a = read_hits(path("chosen.bin")), b = read_hits(path("one.bin"));
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(HitRecord)), 0);
 }
 
 }  // namespace

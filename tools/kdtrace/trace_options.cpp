@@ -50,6 +50,8 @@ kdray::tool::DeviceKind checked_device(const Options& o) {
   if (device == kdray::tool::DeviceKind::List) return device;
   if (device == kdray::tool::DeviceKind::All) throw UsageError("--device all: kdtrace traces on one device");
   kdray::tool::check_threads_option(o.opencl_device.device, o.traversal.threads);
+  if (o.no_lanes && device != kdray::tool::DeviceKind::Host)
+    throw UsageError("--no-lanes is for --device host: an OpenCL device traces one ray per work-item");
   if (o.scene_path.empty() || o.tree_path.empty() == o.cache_folder.empty())
     throw UsageError("SCENE and either TREE or --cache DIR are required");
   if (o.rays_path.empty() == o.generate.empty()) throw UsageError("give one of --rays or --generate");

@@ -15,7 +15,7 @@
 // _mm256_max_ps(b, a) are kd_minf(a, b) and kd_maxf(a, b) for the finite values met here; no
 // contraction), visits the same nodes and leaves in the same order, and tests a leaf's
 // triangles with the scalar code. A ray the fast path does not take, and one whose stack would
-// overflow, is traced by the scalar traversal from the start, as kd_traverse does.
+// overflow, is traced by the robust traversal from the start, as kd_traverse does.
 #include "traversal_variant.h"
 
 #include <kernels/kd_compat.h>
@@ -55,8 +55,10 @@ struct RaySource {
   size_t count, next;
 };
 
+// The robust traversal alone, as kd_traverse turns to it for such rays: it gives the fast path's
+// hits, and a ray that overflowed the fast path's stack would overflow it again.
 void trace_alone(const RaySource& source, size_t index) {
-  traversal_short_stack().closest(source.arrays, source.rays + index, source.hits + index, 1);
+  traversal_robust_short_stack().closest(source.arrays, source.rays + index, source.hits + index, 1);
 }
 
 // Sets lane k of g to the next ray that takes the fast path; clears it when there is none left.

@@ -118,7 +118,8 @@ KD_INLINE int kd_segment_may_precede(float t_start, const HitRecord* best) {
  * PoCL's CPU devices compile __builtin_prefetch (OpenCL's prefetch() is a no-op there); the
  * host defines KD_PREFETCH_NODES only for them. */
 #if !defined(__OPENCL_VERSION__) || defined(KD_PREFETCH_NODES)
-#define KD_PREFETCH_NODE(address) __builtin_prefetch(address)
+#define KD_PREFETCH(address) __builtin_prefetch(address)
+#define KD_PREFETCH_NODE(address) KD_PREFETCH(address)
 #else
 #define KD_PREFETCH_NODE(address) ((void)0)
 #endif

@@ -37,28 +37,48 @@
 #include "kd_traverse_fast.h"
 #include "kd_traverse_robust.h"
 
-/* Both entry points: setup, clipping to the root voxel, the fast path where it applies, else one
- * pass per side combination of split planes the ray lies in. best.t starts at ray.tmax so
- * triangle tests only accept closer hits. */
+/* A ray's start, shared by kd_traverse and the lanes (kd_traverse_lanes.h): best is the miss, the ray set up
+ * and its segment clipped to the root voxel. Returns 0 when the ray meets no voxel (best is
+ * then what to return); else best.t is ray.tmax, so triangle tests only accept closer hits. */
+KD_INLINE int kd_traverse_begin(const KdSceneView* scene, RayRecord record, KdRay* ray, float* scene_t_min,
+                                float* scene_t_max, HitRecord* best) {
+  best->t = INFINITY;
+  best->triangle = KD_NO_HIT;
+  best->u = 0.0f;
+  best->v = 0.0f;
+  if (!kd_ray_setup(ray, record.ox, record.oy, record.oz, record.dx, record.dy, record.dz, record.tmin,
+                    record.tmax))
+    return 0;
+  *scene_t_min = record.tmin > 0.0f ? record.tmin : 0.0f;
+  *scene_t_max = record.tmax;
+  if (!kd_ray_box(ray, scene->bounds_min, scene->bounds_max, scene_t_min, scene_t_max)) return 0;
+  best->t = record.tmax;
+  return 1;
+}
+
+/* The robust traversal of a started ray: one pass per side combination of the split planes it
+ * lies in. Side choices in increasing order, each a subset of the axes met so far (which passes
+ * may add to): the next one after s is ((s | ~met) + 1) & met, and 0 once all are done. */
+KD_INLINE void kd_traverse_robust(const KdSceneView* scene, const KdRay* ray, float scene_t_min, float scene_t_max,
+                                  HitRecord* best, int any_hit) {
+  int in_plane_axes = 0;
+  int plane_sides = 0;
+  do {
+    if (kd_traverse_pass(scene, ray, scene_t_min, scene_t_max, plane_sides, &in_plane_axes, best, any_hit)) break;
+    plane_sides = ((plane_sides | ~in_plane_axes) + 1) & in_plane_axes;
+  } while (plane_sides != 0);
+  if (best->triangle == KD_NO_HIT) best->t = INFINITY;
+}
+
+/* Both entry points: the start, the fast path where it applies, else the robust traversal. */
 KD_INLINE HitRecord kd_traverse(const KdSceneView* scene, RayRecord record, int any_hit) {
   HitRecord best;
-  best.t = INFINITY;
-  best.triangle = KD_NO_HIT;
-  best.u = 0.0f;
-  best.v = 0.0f;
   KdRay ray;
-  if (!kd_ray_setup(&ray, record.ox, record.oy, record.oz, record.dx, record.dy, record.dz,
-                    record.tmin, record.tmax))
-    return best;
+  float scene_t_min, scene_t_max;
+  if (!kd_traverse_begin(scene, record, &ray, &scene_t_min, &scene_t_max, &best)) return best;
 #ifndef KD_TRAVERSAL_ROBUST_ONLY
   const int fast = kd_ray_takes_fast_path(&ray);
   KD_COUNT(scene, fast_path_rays, fast);
-#endif
-  float scene_t_min = record.tmin > 0.0f ? record.tmin : 0.0f;
-  float scene_t_max = record.tmax;
-  if (!kd_ray_box(&ray, scene->bounds_min, scene->bounds_max, &scene_t_min, &scene_t_max)) return best;
-  best.t = record.tmax;
-#ifndef KD_TRAVERSAL_ROBUST_ONLY
   if (fast) {
     if (kd_traverse_fast(scene, &ray, scene_t_min, scene_t_max, &best, any_hit) != KD_FAST_OVERFLOW) {
       if (best.triangle == KD_NO_HIT) best.t = INFINITY;
@@ -71,16 +91,7 @@ KD_INLINE HitRecord kd_traverse(const KdSceneView* scene, RayRecord record, int 
     best.v = 0.0f;
   }
 #endif
-  /* Side choices in increasing order, each a subset of the axes met so far (which passes may
-   * add to): the next one after s is ((s | ~met) + 1) & met, and 0 once all are done. */
-  int in_plane_axes = 0;
-  int plane_sides = 0;
-  do {
-    if (kd_traverse_pass(scene, &ray, scene_t_min, scene_t_max, plane_sides, &in_plane_axes, &best, any_hit))
-      break;
-    plane_sides = ((plane_sides | ~in_plane_axes) + 1) & in_plane_axes;
-  } while (plane_sides != 0);
-  if (best.triangle == KD_NO_HIT) best.t = INFINITY;
+  kd_traverse_robust(scene, &ray, scene_t_min, scene_t_max, &best, any_hit);
   return best;
 }
 

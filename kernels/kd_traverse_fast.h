@@ -34,6 +34,11 @@ KD_INLINE int kd_ray_takes_fast_path(const KdRay* ray) {
  * float, the bound also sends t_split <= 0 to the origin's side. */
 KD_INLINE float kd_fast_far_bound(float t_min) { return kd_maxf(t_min * (1.0f - KD_T_EPSILON), 1.40129846e-45f); }
 
+/* Bit k: the ray runs down axis k, so it meets the node above a split before the one below. */
+KD_INLINE kd_u32 kd_ray_descending_axes(const KdRay* ray) {
+  return (ray->dir[0] < 0.0f ? 1u : 0u) | (ray->dir[1] < 0.0f ? 2u : 0u) | (ray->dir[2] < 0.0f ? 4u : 0u);
+}
+
 #define KD_FAST_OVERFLOW 2
 
 /* kd_traverse_pass for a ray that kd_ray_takes_fast_path, with a plain stack: returns 1 when
@@ -43,9 +48,7 @@ KD_INLINE int kd_traverse_fast(const KdSceneView* scene, const KdRay* ray, float
                                HitRecord* best, int any_hit) {
   KdStackEntry stack[KD_SHORT_STACK_SIZE];
   int stack_count = 0;
-  /* Bit k: the ray runs down axis k, so it meets the node above a split before the one below. */
-  const kd_u32 descending = (ray->dir[0] < 0.0f ? 1u : 0u) | (ray->dir[1] < 0.0f ? 2u : 0u) |
-                            (ray->dir[2] < 0.0f ? 4u : 0u);
+  const kd_u32 descending = kd_ray_descending_axes(ray);
   kd_u32 node_index = 0;
   float t_min = scene_t_min;
   float t_max = scene_t_max;

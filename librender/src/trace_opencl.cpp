@@ -41,13 +41,20 @@ std::optional<TraversalPath> parse_traversal_path(const std::string& name) {
   throw Error("", "unknown traversal '" + name + "': auto, fast or robust");
 }
 
-TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu) {
+bool opencl_traces_in_lanes(const KdTree& tree, const DeviceSelection& device, bool gpu) {
+  return !gpu && device.lanes && device.short_stack_size == 0 &&
+         traversal_path_for(device, gpu) == TraversalPath::FastWhereSafe && tree.nodes.size() > kLanesMinNodes;
+}
+
+TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu, bool lanes) {
   const TraversalPath traversal = traversal_path_for(device, gpu);
   const std::string options = "-cl-std=CL1.2" + traversal_build_options(device, gpu);
-  // One ray per work-item everywhere: a GPU vectorises across work-items. On a CPU device
-  // (PoCL) each work-item runs as scalar code and waits on its node fetches, so the far child
-  // of a split is prefetched when pushed; GPU compilers need not know __builtin_prefetch.
+  // One ray per work-item on a GPU, which vectorises across work-items. On a CPU device (PoCL)
+  // a work-item runs as scalar code and waits on its node fetches: it traces 16 rays in lanes
+  // where the tree is large enough, else one ray whose far children are prefetched when pushed;
+  // GPU compilers need not know __builtin_prefetch.
   if (gpu) return {options, "one-ray-per-work-item", traversal};
+  if (lanes) return {options + " -DKD_PREFETCH_NODES -DKD_TRACE_LANES", "16-rays-per-work-item-in-float8-lanes+prefetch", traversal};
   return {options + " -DKD_PREFETCH_NODES", "one-ray-per-work-item+prefetch", traversal};
 }
 
@@ -56,7 +63,8 @@ std::vector<HitRecord> trace_rays_opencl(const KdTree& tree, const std::vector<R
   TraceOpenClStats stats;
   cl::Runtime& runtime = cl::runtime_for(device);
   stats.device = runtime.info().name;
-  const TraceKernelBuild kernel_build = trace_kernel_build(device, runtime.info().is_gpu);
+  const bool lanes = opencl_traces_in_lanes(tree, device, runtime.info().is_gpu);
+  const TraceKernelBuild kernel_build = trace_kernel_build(device, runtime.info().is_gpu, lanes);
   stats.kernel_variant = kernel_build.variant;
   stats.traversal = kernel_build.traversal;
   cl::ProgramBuild build = runtime.program("kd_trace.cl", kernel_build.options);
@@ -79,7 +87,7 @@ std::vector<HitRecord> trace_rays_opencl(const KdTree& tree, const std::vector<R
   args.ray_count = static_cast<cl_uint>(rays.size());
   cl::Buffer next_ray = runtime.buffer(sizeof(cl_uint), nullptr, CL_MEM_READ_WRITE);
   cl::zero_buffer(runtime.queue(), next_ray, sizeof(cl_uint));
-  cl::Kernel kernel = cl::create_kernel(build.program, "kd_trace_closest");
+  cl::Kernel kernel = cl::create_kernel(build.program, lanes ? "kd_trace_closest_lanes" : "kd_trace_closest");
   cl_uint arg = 0;
 #define KD_BIND_GEOMETRY(type, name) cl::set_arg(kernel.get(), arg++, geometry.name);
 #define KD_BIND_ARG(type, name) cl::set_arg(kernel.get(), arg++, args.name);
@@ -93,7 +101,8 @@ std::vector<HitRecord> trace_rays_opencl(const KdTree& tree, const std::vector<R
   std::vector<HitRecord> hits(rays.size());
   auto trace_start = Clock::now();
   if (!rays.empty()) {
-    size_t local = runtime.local_size(device);
+    // In lanes a work-item is a thread's whole work: one per compute unit.
+    const size_t local = lanes ? 1 : runtime.local_size(device);
     cl::run_kernel(runtime.queue(), kernel.get(), runtime.persistent_global_size(local), local);
     cl::check(clFinish(runtime.queue()), "clFinish");
   }

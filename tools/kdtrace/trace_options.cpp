@@ -40,8 +40,9 @@ void add_options(CLI::App& app, Options& o) {
                  "device's own: robust on a GPU, fast on a CPU). All give the same hits")
       ->check(CLI::IsMember({"auto", "fast", "robust"}))->capture_default_str()->group("Device");
   app.add_flag("--no-lanes", o.no_lanes,
-               "Host: one ray at a time per thread, not 16 in AVX2 lanes (the same hits; lanes run where the CPU "
-               "has AVX2 and the tree has more than 256 nodes)")
+               "On a CPU: one ray at a time per thread (host) or per work-item (OpenCL), not 16 in AVX2 or "
+               "float8 lanes (the same hits; lanes run where the tree has more than 256 nodes, on the host where "
+               "the CPU has AVX2; a GPU always traces one ray per work-item)")
       ->group("Device");
 }
 
@@ -50,8 +51,6 @@ kdray::tool::DeviceKind checked_device(const Options& o) {
   if (device == kdray::tool::DeviceKind::List) return device;
   if (device == kdray::tool::DeviceKind::All) throw UsageError("--device all: kdtrace traces on one device");
   kdray::tool::check_threads_option(o.opencl_device.device, o.traversal.threads);
-  if (o.no_lanes && device != kdray::tool::DeviceKind::Host)
-    throw UsageError("--no-lanes is for --device host: an OpenCL device traces one ray per work-item");
   if (o.scene_path.empty() || o.tree_path.empty() == o.cache_folder.empty())
     throw UsageError("SCENE and either TREE or --cache DIR are required");
   if (o.rays_path.empty() == o.generate.empty()) throw UsageError("give one of --rays or --generate");
@@ -61,6 +60,7 @@ kdray::tool::DeviceKind checked_device(const Options& o) {
 kdray::DeviceSelection opencl_selection(const Options& o) {
   kdray::DeviceSelection device = o.opencl_device;
   device.traversal = kdray::parse_traversal_path(o.path_name);
+  device.lanes = !o.no_lanes;
   return device;
 }
 

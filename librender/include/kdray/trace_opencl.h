@@ -44,14 +44,19 @@ std::optional<TraversalPath> parse_traversal_path(const std::string& name);
 // tree can be (never restarts), Short 0, the kernel's default KD_SHORT_STACK_SIZE as on the CPU.
 unsigned kernel_stack_size(TraversalStack stack);
 
+// Whether kd_trace.cl traces `tree` 16 rays per work-item in float8 lanes
+// (kernels/kd_traverse_lanes.h): on a CPU device with the fast path and the default short stack,
+// where DeviceSelection::lanes and the tree has more than kLanesMinNodes nodes, as on the host.
+bool opencl_traces_in_lanes(const KdTree& tree, const DeviceSelection& device, bool gpu);
+
 // kd_trace.cl's build options and its variant's name (TraceOpenClStats::kernel_variant) for a
-// GPU or a CPU device, before the device's own (device_build_options.h).
+// GPU or a CPU device, in lanes or not, before the device's own (device_build_options.h).
 struct TraceKernelBuild {
   std::string options;
   std::string variant;
   TraversalPath traversal;
 };
-TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu);
+TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu, bool lanes = false);
 
 // Same contract as trace_closest (libkdtree): t = +inf and KD_NO_HIT on a miss.
 std::vector<HitRecord> trace_rays_opencl(const KdTree& tree, const std::vector<RayRecord>& rays,

@@ -121,6 +121,7 @@ KD_INLINE int kd_segment_may_precede(float t_start, const HitRecord* best) {
 #define KD_PREFETCH(address) __builtin_prefetch(address)
 #define KD_PREFETCH_NODE(address) KD_PREFETCH(address)
 #else
+#define KD_PREFETCH(address) ((void)0)
 #define KD_PREFETCH_NODE(address) ((void)0)
 #endif
 

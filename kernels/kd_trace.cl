@@ -1,6 +1,6 @@
 /* Closest hits for a buffer of rays (kdtrace --device opencl, and the kernel-vs-CPU test).
  * Persistent threads: each work-item fetches its own batch of rays from a global atomic counter
- * until none are left. One ray per work-item, or with KD_TRACE_LANES (CPU devices) 16 per
+ * until none are left. One ray per work-item, or with KD_TRACE_LANES (CPU devices) 24 per
  * work-item in float8 lanes (kd_traverse_lanes.h). */
 #include "kd_trace_args.h"
 #include "kd_traverse.h"

@@ -1,12 +1,13 @@
-/* The fast path (kd_traverse_fast.h) for 16 rays at once, in two groups of 8 lanes: closest hits
- * on CPUs, both for the host (C++, AVX2) and for PoCL's CPU devices (OpenCL C, float8).
+/* The fast path (kd_traverse_fast.h) for several rays at once, in groups of 8 lanes: closest hits
+ * on CPUs, both for the host (C++, AVX2: 16 rays) and for PoCL's CPU devices (OpenCL C, float8:
+ * 24 rays).
  *
  * Why: one ray's descent is a chain of dependent node loads and hard-to-predict branches, so a
  * core mostly waits (on a random ray the scalar step runs at under one instruction a cycle). Here
  * an inner step is taken for 8 rays with the same vector instructions and no branch on the data:
  * the 8 node loads are one gather, and the nodes each lane goes to next are prefetched, as is the
- * block of a leaf a lane has just reached (its triangles are tested one step later). Two groups
- * alternate, so one group's loads are in flight while the other computes. The rare events (a
+ * block of a leaf a lane has just reached (its triangles are tested one step later). Groups take
+ * turns, so one group's loads are in flight while another computes. The rare events (a
  * leaf, an empty child, a push onto the stack, a finished ray) are handled lane by lane in scalar
  * code. A GPU keeps one ray per work-item: it is the GPU's own lanes that run rays side by side.
  *
@@ -26,7 +27,15 @@
 #include "kd_traverse.h"
 
 #define KD_LANES 8
+/* Groups of lanes taking turns: while one group's loads are in flight, the others compute. On
+ * PoCL, 3 traced random rays of large meshes 1-14% faster than 2 (camera rays 2% slower); on the
+ * host, 3 gained on the largest meshes and lost 2-5% on smaller ones (bench/LOG.md, "PoCL traces
+ * in float8 lanes"). */
+#ifdef __OPENCL_VERSION__
+#define KD_LANE_GROUPS 3
+#else
 #define KD_LANE_GROUPS 2
+#endif
 
 #ifdef __OPENCL_VERSION__
 typedef float8 kd_lane_f;
@@ -297,7 +306,7 @@ KD_INLINE int kd_lane_step(KdLaneGroup* g, const KdSceneView* scene, KdLaneRays*
   return kd_bit_count(kd_lane_bits(kd_lane_load_i(g->active)));
 }
 
-/* Closest hits for every ray of source, in two groups of lanes. */
+/* Closest hits for every ray of source, in KD_LANE_GROUPS groups of lanes. */
 KD_INLINE void kd_trace_closest_in_lanes(const KdSceneView* scene, KdLaneRays* source) {
   KdLaneGroup groups[KD_LANE_GROUPS];
   int active = 0;

@@ -50,11 +50,13 @@ TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu, boo
   const TraversalPath traversal = traversal_path_for(device, gpu);
   const std::string options = "-cl-std=CL1.2" + traversal_build_options(device, gpu);
   // One ray per work-item on a GPU, which vectorises across work-items. On a CPU device (PoCL)
-  // a work-item runs as scalar code and waits on its node fetches: it traces 16 rays in lanes
+  // a work-item runs as scalar code and waits on its node fetches: it traces 24 rays in lanes
   // where the tree is large enough, else one ray whose far children are prefetched when pushed;
   // GPU compilers need not know __builtin_prefetch.
   if (gpu) return {options, "one-ray-per-work-item", traversal};
-  if (lanes) return {options + " -DKD_PREFETCH_NODES -DKD_TRACE_LANES", "16-rays-per-work-item-in-float8-lanes+prefetch", traversal};
+  if (lanes)
+    return {options + " -DKD_PREFETCH_NODES -DKD_TRACE_LANES", "24-rays-per-work-item-in-float8-lanes+prefetch",
+            traversal};
   return {options + " -DKD_PREFETCH_NODES", "one-ray-per-work-item+prefetch", traversal};
 }
 

@@ -84,7 +84,7 @@ TEST_F(TraceKernel, ShortStackOfOneGivesTheSameHits) {
 
 // A device compiles its own traversal unless one is named: the robust code alone on a GPU, where
 // it traced faster, the fast path on a CPU; the program's options and its reported path agree.
-// On a CPU device a tree of more than kLanesMinNodes nodes is traced 16 rays per work-item in
+// On a CPU device a tree of more than kLanesMinNodes nodes is traced 24 rays per work-item in
 // float8 lanes (kernels/kd_traverse_lanes.h): the same hits as one ray per work-item and as the
 // CPU, on camera, random and hard-case rays and on a tree whose short stack some rays overflow.
 TEST_F(TraceKernel, LanesGiveTheSameHitsAsOneRayPerWorkItem) {
@@ -92,13 +92,14 @@ TEST_F(TraceKernel, LanesGiveTheSameHitsAsOneRayPerWorkItem) {
   one_ray.lanes = false;
   const Scene sphere = test::icosphere_scene(5, {0, 0, 0}, 1.0f);
   const KdTree sphere_tree = build_kdtree(sphere, BuildSettings{});
-  for (const auto& [name, scene, tree] : {std::tuple<const char*, const Scene*, const KdTree*>{"fandisk", scene_, tree_},
-                                          {"icosphere", &sphere, &sphere_tree}}) {
+  using Case = std::tuple<const char*, const Scene*, const KdTree*>;
+  for (const auto& [name, scene, tree] : {Case{"fandisk", scene_, tree_}, Case{"icosphere", &sphere, &sphere_tree}}) {
     ASSERT_TRUE(opencl_traces_in_lanes(*tree, DeviceSelection{}, false)) << name;
-    ASSERT_FALSE(opencl_traces_in_lanes(*tree, DeviceSelection{}, true)) << name << ": a GPU keeps one ray per work-item";
+    ASSERT_FALSE(opencl_traces_in_lanes(*tree, DeviceSelection{}, true)) << name << ": a GPU: one ray per work-item";
     ASSERT_FALSE(opencl_traces_in_lanes(*tree, one_ray, false)) << name;
     std::vector<RayRecord> rays = camera_rays(*scene, 128, 128);
-    for (const std::vector<RayRecord>& more : {random_rays(tree->bounds, 30000, 31), hard_case_rays(*scene, *tree, 30000, 32)})
+    for (const std::vector<RayRecord>& more :
+         {random_rays(tree->bounds, 30000, 31), hard_case_rays(*scene, *tree, 30000, 32)})
       rays.insert(rays.end(), more.begin(), more.end());
     std::vector<HitRecord> cpu;
     TraceOptions cpu_one_ray;
@@ -107,7 +108,7 @@ TEST_F(TraceKernel, LanesGiveTheSameHitsAsOneRayPerWorkItem) {
     TraceOpenClStats lanes_stats, one_ray_stats;
     const std::vector<HitRecord> lanes = trace_rays_opencl(*tree, rays, DeviceSelection{}, &lanes_stats);
     const std::vector<HitRecord> single = trace_rays_opencl(*tree, rays, one_ray, &one_ray_stats);
-    EXPECT_EQ(lanes_stats.kernel_variant, "16-rays-per-work-item-in-float8-lanes+prefetch") << name;
+    EXPECT_EQ(lanes_stats.kernel_variant, "24-rays-per-work-item-in-float8-lanes+prefetch") << name;
     EXPECT_EQ(one_ray_stats.kernel_variant, "one-ray-per-work-item+prefetch") << name;
     size_t hits = 0;
     for (const HitRecord& hit : cpu) hits += hit.triangle != KD_NO_HIT;

@@ -35,7 +35,7 @@ struct DeviceSelection {
   unsigned short_stack_size = 0;  // KD_SHORT_STACK_SIZE for the traversal; 0: the kernel default
   // The traversal the programs compile; unset: the device's own (traversal_path_for, trace_opencl.h).
   std::optional<TraversalPath> traversal{};
-  // kd_trace.cl on a CPU device: 16 rays per work-item in lanes where opencl_traces_in_lanes says
+  // kd_trace.cl on a CPU device: 24 rays per work-item in lanes where opencl_traces_in_lanes says
   // so (the same hits); false: one ray per work-item.
   bool lanes = true;
 };

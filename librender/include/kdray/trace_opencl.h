@@ -44,7 +44,7 @@ std::optional<TraversalPath> parse_traversal_path(const std::string& name);
 // tree can be (never restarts), Short 0, the kernel's default KD_SHORT_STACK_SIZE as on the CPU.
 unsigned kernel_stack_size(TraversalStack stack);
 
-// Whether kd_trace.cl traces `tree` 16 rays per work-item in float8 lanes
+// Whether kd_trace.cl traces `tree` 24 rays per work-item in float8 lanes
 // (kernels/kd_traverse_lanes.h): on a CPU device with the fast path and the default short stack,
 // where DeviceSelection::lanes and the tree has more than kLanesMinNodes nodes, as on the host.
 bool opencl_traces_in_lanes(const KdTree& tree, const DeviceSelection& device, bool gpu);

@@ -37,9 +37,10 @@
 #include "kd_traverse_fast.h"
 #include "kd_traverse_robust.h"
 
-/* A ray's start, shared by kd_traverse and the lanes (kd_traverse_lanes.h): best is the miss, the ray set up
- * and its segment clipped to the root voxel. Returns 0 when the ray meets no voxel (best is
- * then what to return); else best.t is ray.tmax, so triangle tests only accept closer hits. */
+/* A ray's start, shared by kd_traverse and the lanes (kd_traverse_lanes.h): best is the miss,
+ * the ray set up and its segment clipped to the root voxel. Returns 0 when the ray meets no voxel
+ * (best is then what to return); else best.t is ray.tmax, so triangle tests only accept closer
+ * hits. */
 KD_INLINE int kd_traverse_begin(const KdSceneView* scene, RayRecord record, KdRay* ray, float* scene_t_min,
                                 float* scene_t_max, HitRecord* best) {
   best->t = INFINITY;

@@ -29,7 +29,9 @@ void add_options(CLI::App& app, Options& o) {
   app.add_option("--write-rays", o.write_rays_path, "Also write the generated rays to this ray file")->group("Rays");
   app.add_option("--hits", o.hits_path, "Hit file to write (formats/rays.md)")->group("Output");
   kdray::tool::add_device_option(app, o.opencl_device.device);
-  app.add_option("--local-size", o.opencl_device.local_size, "OpenCL work-group size; 0: the device's default")
+  app.add_option("--local-size", o.opencl_device.local_size,
+                 "OpenCL work-group size where one ray is traced per work-item (in lanes a work-item is a "
+                 "core's whole share); 0: the device's default")
       ->capture_default_str()->group("Device");
   kdray::tool::add_threads_option(app, o.traversal.threads);
   app.add_option("--stack", o.stack_name, "Traversal stack: short (8 entries, restart), depth1, full")

@@ -18,8 +18,9 @@
  * traversal from the start, as kd_traverse does.
  *
  * The step is written once over a lane type: OpenCL C's int8 and float8, or GCC's vector
- * extensions in C++ with AVX2 intrinsics for the gather, the selects and the lane mask. The
- * includer compiles it for AVX2 in C++; a mask is -1 or 0 in every lane.
+ * extensions in C++ with AVX2 intrinsics for the gather, the selects and the lane mask; a mask is
+ * -1 or 0 in every lane. A C++ includer compiles it for AVX2 and, where it includes it inside a
+ * namespace, includes <immintrin.h> before.
  */
 #ifndef KD_TRAVERSE_LANES_H
 #define KD_TRAVERSE_LANES_H

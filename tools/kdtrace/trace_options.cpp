@@ -43,8 +43,8 @@ void add_options(CLI::App& app, Options& o) {
       ->check(CLI::IsMember({"auto", "fast", "robust"}))->capture_default_str()->group("Device");
   app.add_flag("--no-lanes", o.no_lanes,
                "On a CPU: one ray at a time per thread (host) or per work-item (OpenCL), not 16 in AVX2 "
-               "or 24 in float8 lanes (the same hits; lanes run where the tree has more than 256 nodes, on the host where "
-               "the CPU has AVX2; a GPU always traces one ray per work-item)")
+               "or 24 in float8 lanes (the same hits; lanes run where the tree has more than 256 nodes, on "
+               "the host where the CPU has AVX2; a GPU always traces one ray per work-item)")
       ->group("Device");
 }
 

@@ -15,6 +15,7 @@
 #include <kdray/image_io.h>
 #include <kdray/kdtree.h>
 #include <kdray/render.h>
+#include <kdray/traverse.h>
 #include <kdray/tree_cache.h>
 
 #include <device_option.h>
@@ -130,6 +131,13 @@ int render(const Options& o) {
 
   frame.settings = kdray::resolve_view(scene, frame.settings);
   kdrender::warn_if_default_light(scene, o.scene_path, frame);
+  if (frame.device.device == kdray::kHostDevice) {
+    // The host traces the tree in memory: copied out of its file onto huge pages when the
+    // paths' rays repay the copy, as kdtrace does.
+    const kdray::RenderSettings& s = frame.settings;
+    const uint64_t rays = uint64_t(s.width) * s.height * s.spp * (uint64_t(s.max_bounces) + 1);
+    kdray::copy_tree_for_rays(tree, rays, frame.device.threads);
+  }
   kdray::tool::ProgressBar progress("kdrender", !o.flags.quiet);
   kdrender::FrameResult result = kdrender::render_frame(scene, tree, frame, [&](uint32_t done, uint32_t total) {
     progress.update(double(done) / total, std::to_string(done) + "/" + std::to_string(total) + " spp");

@@ -146,17 +146,19 @@ void write_container(const std::string& path, const ContainerHeaderInfo& info,
 
   // The checksum covers everything after the header, padding included, in file order. It is
   // computed as the payload is written, each piece while it is still in cache, and the header
-  // that records it is written last, over a placeholder. Writes cover whole 2 MiB pieces of the
-  // file at 2 MiB offsets: the page cache then holds the file in 2 MiB folios where the file
-  // system allows, and a reader that maps the file gets huge-page mappings of it (random rays
-  // through a mapped tree ran 10% slower on 4 KiB pages).
+  // that records it is written last, over a placeholder. Pieces are 1 MiB. Whole 2 MiB pieces
+  // at 2 MiB offsets make the page cache hold the file in 2 MiB folios, which a reader that maps
+  // it gets as huge pages; but allocating those folios cost a large tree's build more than
+  // writing its bytes (bench/LOG.md, "The tree file written in 1 MiB pieces"), and the page
+  // cache splits them again as the file ages. Readers that trace many rays copy the tree into
+  // huge pages of their own instead (copy_tree_for_rays).
   static const char kZeros[format::kSectionAlignment] = {};
   AtomicFile output(path);
   FileDescriptor file(::open(output.temporary_path().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
   if (file.get() < 0) throw Error(path, std::string("cannot create: ") + std::strerror(errno));
   std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(), &XXH3_freeState);
   XXH3_64bits_reset(state.get());
-  constexpr uint64_t kPiece = uint64_t{2} << 20;
+  constexpr uint64_t kPiece = uint64_t{1} << 20;
   std::vector<iovec> piece;
   uint64_t position = 0;
   auto put = [&](const void* data, uint64_t size, bool hashed) {

@@ -1,0 +1,120 @@
+// The sweep over one axis's sorted events (sweep_axis) against costing every candidate plane from
+// the triangles' bounds directly: the same cheapest split, cost, side of the planar triangles and
+// counts, bit for bit. The cases include long runs of equal positions at the voxel's faces and
+// inside it, planar triangles, and -0 beside +0 (one run, recorded as its first event's).
+#include "build_common.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <random>
+#include <vector>
+
+namespace kdray {
+namespace {
+
+using namespace kdray::detail;
+
+// The split the sweep should find: every distinct position in event order, costed with
+// consider_split from counts taken over all bounds.
+SplitChoice every_plane(const std::vector<Box3>& bounds, const std::vector<Event>& events, int axis,
+                        const Box3& voxel, const CostModel& cost) {
+  const SplitAreas areas(voxel, axis);
+  SplitChoice best;
+  for (size_t i = 0; i < events.size(); ++i) {
+    if (i > 0 && events[i].position == events[i - 1].position) continue;
+    const float p = events[i].position;
+    uint64_t left = 0, right = 0, planar = 0;
+    for (const Box3& b : bounds) {
+      const float lo = b.min[axis], hi = b.max[axis];
+      if (lo == hi) {
+        planar += lo == p;
+        left += lo < p;
+        right += lo > p;
+      } else {
+        left += lo < p;
+        right += hi > p;
+      }
+    }
+    consider_split(cost, areas, axis, p, left, right, planar, best);
+  }
+  return best;
+}
+
+uint32_t bits_of(float value) {
+  uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  return bits;
+}
+
+// `count` boxes in the voxel [-1, 1] on the axis; `runs` of them start or end on a few shared
+// positions (the faces, 0 as -0 and +0, one inside), some of them planar.
+std::vector<Box3> boxes(size_t count, uint32_t seed, int axis) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  const float shared[] = {-1.0f, 1.0f, 0.0f, -0.0f, 0.25f};
+  std::vector<Box3> result(count);
+  for (size_t i = 0; i < count; ++i) {
+    Box3& b = result[i];
+    for (int k = 0; k < 3; ++k) {
+      b.min[k] = -1.0f;
+      b.max[k] = 1.0f;
+    }
+    float lo = unit(random), hi = unit(random);
+    if (random() % 3 == 0) lo = shared[random() % 5];
+    if (random() % 3 == 0) hi = shared[random() % 5];
+    if (random() % 7 == 0) hi = lo;  // planar
+    if (hi < lo) std::swap(lo, hi);
+    b.min[axis] = lo;
+    b.max[axis] = hi;
+  }
+  return result;
+}
+
+TEST(SweepAxis, FindsTheSplitThatCostingEveryPlaneFinds) {
+  const Box3 voxel{{-1, -1, -1}, {1, 1, 1}};
+  const CostModel cost{15.0, 20.0, 0.8};
+  for (uint32_t seed = 1; seed <= 40; ++seed) {
+    const int axis = static_cast<int>(seed % 3);
+    // From a handful of boxes to thousands, with long runs of shared positions.
+    const size_t count = seed % 4 == 0 ? 3 : 50 * seed;
+    const std::vector<Box3> bounds = boxes(count, seed, axis);
+    std::vector<Event> events;
+    for (size_t i = 0; i < bounds.size(); ++i) append_events(events, bounds[i], axis, static_cast<uint32_t>(i));
+    std::sort(events.begin(), events.end());
+    SplitChoice swept;
+    sweep_axis(events.data(), events.size(), axis, voxel, count, cost, swept);
+    const SplitChoice expected = every_plane(bounds, events, axis, voxel, cost);
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    ASSERT_EQ(swept.axis, expected.axis);
+    EXPECT_EQ(swept.cost, expected.cost);
+    EXPECT_EQ(bits_of(swept.position), bits_of(expected.position));
+    EXPECT_EQ(swept.planar_left, expected.planar_left);
+    EXPECT_EQ(swept.n_left, expected.n_left);
+    EXPECT_EQ(swept.n_right, expected.n_right);
+  }
+}
+
+// A long first run above empty space at the bottom of the voxel: its split cuts off that space
+// (the empty bonus applies), which only the first and last runs are costed for.
+TEST(SweepAxis, CostsALongFirstRunWithTheEmptyBonus) {
+  const Box3 voxel{{0, 0, 0}, {1, 1, 1}};
+  const CostModel cost{15.0, 20.0, 0.5};
+  std::vector<Box3> bounds(600, Box3{{0.2f, 0, 0}, {0.3f, 1, 1}});
+  bounds.push_back(Box3{{0.9f, 0, 0}, {1, 1, 1}});
+  std::vector<Event> events;
+  for (size_t i = 0; i < bounds.size(); ++i) append_events(events, bounds[i], 0, static_cast<uint32_t>(i));
+  std::sort(events.begin(), events.end());
+  SplitChoice swept;
+  sweep_axis(events.data(), events.size(), 0, voxel, bounds.size(), cost, swept);
+  const SplitChoice expected = every_plane(bounds, events, 0, voxel, cost);
+  ASSERT_EQ(expected.position, 0.2f);  // the case is the one meant: the empty part is cut off
+  EXPECT_EQ(swept.cost, expected.cost);
+  EXPECT_EQ(swept.position, expected.position);
+  EXPECT_EQ(swept.n_left, expected.n_left);
+  EXPECT_EQ(swept.n_right, expected.n_right);
+}
+
+}  // namespace
+}  // namespace kdray

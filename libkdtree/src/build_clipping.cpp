@@ -123,6 +123,33 @@ bool clearly_above(float inner, float outer) {
   return static_cast<double>(inner) - outer >= magnitude * 0x1p-40 + 0x1p-1000;
 }
 
+// The bounds of the points a clip leaves, in the order it leaves them: std::min and std::max
+// keep the first of equal values (-0 and +0), so the order is part of the result.
+class PointBounds {
+ public:
+  void add(const double* point) {
+    for (int k = 0; k < 3; ++k) {
+      lo_[k] = empty_ ? point[k] : std::min(lo_[k], point[k]);
+      hi_[k] = empty_ ? point[k] : std::max(hi_[k], point[k]);
+    }
+    empty_ = false;
+  }
+  bool empty() const { return empty_; }
+  // As ClippedPolygon::bounds_in: rounded outwards to float, within `voxel`.
+  bool in(const Box3& voxel, Box3& out) const {
+    Box3 clipped_box;
+    for (int k = 0; k < 3; ++k) {
+      clipped_box.min[k] = round_down(lo_[k]);
+      clipped_box.max[k] = round_up(hi_[k]);
+    }
+    return intersect_boxes(clipped_box, voxel, out);
+  }
+
+ private:
+  double lo_[3], hi_[3];
+  bool empty_ = true;
+};
+
 // A triangle clipped to a voxel's planes axis by axis, x to z, min before max (Sutherland-
 // Hodgman in double). Planes that keep the whole polygon are skipped: those that keep the
 // triangle's bounding box with room to spare without looking at the points (the polygon lies
@@ -135,12 +162,7 @@ class ClippedPolygon {
     for (int corner = 0; corner < 3; ++corner)
       for (int k = 0; k < 3; ++k) buffers_[0].points[corner][k] = corners.point[corner][k];
   }
-  // A copy of the current polygon only.
-  ClippedPolygon(const ClippedPolygon& other) : triangle_box_(other.triangle_box_) {
-    const Polygon& polygon = other.buffers_[other.current_];
-    buffers_[0].size = polygon.size;
-    std::copy(&polygon.points[0][0], &polygon.points[0][0] + 3 * polygon.size, &buffers_[0].points[0][0]);
-  }
+  ClippedPolygon(const ClippedPolygon&) = delete;
   ClippedPolygon& operator=(const ClippedPolygon&) = delete;
 
   // Clips by the two planes of `axis` of `voxel`; false when nothing is left.
@@ -161,6 +183,31 @@ class ClippedPolygon {
       current_ = 1 - current_;
   }
   bool empty() const { return buffers_[current_].size == 0; }
+
+  // The bounds of the polygon's parts below and above `bound` on `axis`: of the points that
+  // clip_polygon<false> (below) and clip_polygon<true> (above) of it leave, in the order they
+  // leave them (all of them where a side keeps the whole polygon), without writing either
+  // polygon; a point where an edge crosses the plane is computed once for both sides.
+  void bounds_of_halves(int axis, double bound, PointBounds (&halves)[2]) const {
+    const Polygon& polygon = buffers_[current_];
+    for (int i = 0; i < polygon.size; ++i) {
+      const double* p = polygon.points[i];
+      const double* q = polygon.points[i + 1 == polygon.size ? 0 : i + 1];
+      const bool p_below = p[axis] <= bound, q_below = q[axis] <= bound;
+      const bool p_above = p[axis] >= bound, q_above = q[axis] >= bound;
+      if (p_below) halves[0].add(p);
+      if (p_above) halves[1].add(p);
+      const bool crosses_below = p_below != q_below, crosses_above = p_above != q_above;
+      if (crosses_below || crosses_above) {
+        const double t = (bound - p[axis]) / (q[axis] - p[axis]);
+        double x[3];
+        for (int k = 0; k < 3; ++k) x[k] = p[k] + t * (q[k] - p[k]);
+        x[axis] = bound;
+        if (crosses_below) halves[0].add(x);
+        if (crosses_above) halves[1].add(x);
+      }
+    }
+  }
 
   // The polygon's bounds rounded outwards to float, within `voxel`.
   bool bounds_in(const Box3& voxel, Box3& out) const {
@@ -224,15 +271,10 @@ StraddlerBounds straddler_bounds(const Scene& scene, uint32_t triangle, const Bo
     }
     if (shared.empty()) return result;  // reaches stays false where clipped
   }
-  if (clipped[0]) {
-    ClippedPolygon below(shared);
-    below.clip_max(child_voxels[0], axis);
-    result.reaches[0] = !below.empty() && below.bounds_in(child_voxels[0], result.bounds[0]);
-  }
-  if (clipped[1]) {
-    shared.clip_min(child_voxels[1], axis);
-    result.reaches[1] = !shared.empty() && shared.bounds_in(child_voxels[1], result.bounds[1]);
-  }
+  PointBounds halves[2];
+  shared.bounds_of_halves(axis, child_voxels[0].max[axis], halves);
+  for (int c = 0; c < 2; ++c)
+    if (clipped[c]) result.reaches[c] = !halves[c].empty() && halves[c].in(child_voxels[c], result.bounds[c]);
   return result;
 }
 

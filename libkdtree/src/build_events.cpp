@@ -53,7 +53,9 @@ using KeyArray = std::vector<uint64_t, UninitialisedAllocator<uint64_t>>;
 constexpr size_t kRadixSortEvents = 1024;
 
 // Sorts events by sorting their keys (integers, which a radix sort takes), unless one is -0:
-// then by comparison, `sort_with_comparison`.
+// then by comparison, `sort_with_comparison`. The events come in the order of their local
+// triangle indices (each node makes them triangle by triangle), which fill the keys' three low
+// bytes: the radix sort, stable, needs no pass over those.
 template <typename SortEvents>
 void sort_events(EventArray& events, KeyArray& keys, KeyArray& scratch, SortEvents sort_with_comparison) {
   if (!std::all_of(events.begin(), events.end(), has_key)) {
@@ -66,7 +68,7 @@ void sort_events(EventArray& events, KeyArray& keys, KeyArray& scratch, SortEven
     std::sort(keys.begin(), keys.end());
   } else {
     scratch.resize(keys.size());
-    radix_sort(keys.data(), scratch.data(), keys.size());
+    radix_sort(keys.data(), scratch.data(), keys.size(), 3);
   }
   std::transform(keys.begin(), keys.end(), events.begin(), event_of_key);
 }

@@ -8,7 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -104,6 +106,65 @@ TEST(KdBuildClipping, StraddlersBoundsAreEachChildsClippedTriangle) {
   }
   EXPECT_GT(straddlers, 1500u) << "most cases should straddle";
   EXPECT_GT(clipped_sides, 2 * straddlers - 100);
+}
+
+uint32_t bits_of(float value) {
+  uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  return bits;
+}
+
+// A triangle inside its parent voxel meets only the split plane, in the children as from
+// scratch: the same points, so the same bounds bit for bit. The split plane runs through the
+// middle corner in every fourth case (a corner on the plane belongs to both sides).
+TEST(KdBuildClipping, StraddlersInsideTheParentVoxelAreEachChildsClippedTriangleExactly) {
+  std::mt19937 random(5);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), fraction(0.0f, 1.0f);
+  std::vector<float> corners;
+  std::vector<Box3> voxels;
+  std::vector<float> positions;
+  const size_t count = 4000;
+  for (size_t i = 0; i < count; ++i) {
+    float p[3][3];
+    for (auto& corner : p)
+      for (float& x : corner) x = i % 5 == 0 ? std::round(unit(random) * 4) / 4 : unit(random);  // some on a grid
+    Box3 voxel;
+    for (int k = 0; k < 3; ++k) {
+      const float lo = std::min({p[0][k], p[1][k], p[2][k]}), hi = std::max({p[0][k], p[1][k], p[2][k]});
+      const bool tight = i % 3 == 0;  // the voxel is the triangle's box
+      voxel.min[k] = tight ? lo : lo - fraction(random);
+      voxel.max[k] = tight ? hi : hi + fraction(random);
+    }
+    const int axis = static_cast<int>(i % 3);
+    float sorted[3] = {p[0][axis], p[1][axis], p[2][axis]};
+    std::sort(sorted, sorted + 3);
+    positions.push_back(i % 4 == 0 ? sorted[1] : sorted[0] + (sorted[2] - sorted[0]) * fraction(random));
+    voxels.push_back(voxel);
+    for (auto& corner : p) corners.insert(corners.end(), corner, corner + 3);
+  }
+  const Scene scene = test::from_triangles(corners);
+  size_t straddlers = 0, on_plane = 0;
+  for (uint32_t t = 0; t < count; ++t) {
+    const int axis = static_cast<int>(t % 3);
+    Box3 parent_bounds;
+    ASSERT_TRUE(triangle_bounds_in_voxel(scene, t, voxels[t], true, parent_bounds));
+    if (!(parent_bounds.min[axis] < positions[t] && positions[t] < parent_bounds.max[axis])) continue;
+    ++straddlers;
+    on_plane += t % 4 == 0;
+    const Box3 children[2] = {below_plane(voxels[t], axis, positions[t]), above_plane(voxels[t], axis, positions[t])};
+    const StraddlerBounds straddler = straddler_bounds(scene, t, parent_bounds, children, axis, true);
+    for (int c = 0; c < 2; ++c) {
+      Box3 from_scratch;
+      const bool reaches = triangle_bounds_in_voxel(scene, t, children[c], true, from_scratch);
+      ASSERT_EQ(straddler.reaches[c], reaches) << "triangle " << t << " child " << c;
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(bits_of(straddler.bounds[c].min[k]), bits_of(from_scratch.min[k])) << "triangle " << t;
+        EXPECT_EQ(bits_of(straddler.bounds[c].max[k]), bits_of(from_scratch.max[k])) << "triangle " << t;
+      }
+    }
+  }
+  EXPECT_GT(straddlers, 3000u);
+  EXPECT_GT(on_plane, 500u);
 }
 
 TEST(KdBuildClipping, StraddlersBoundsHoldTheTriangleInsideEachChild) {

@@ -357,6 +357,23 @@ TEST(KdBuild, RadixSortSortsAsAComparisonSortDoes) {
     }
 }
 
+// From byte 3 up only: keys whose three low bytes increase along the array (as a node's events
+// do, made triangle by triangle) still come out sorted; keys whose low bytes do not, do not.
+TEST(KdBuild, RadixSortFromAByteKeepsTheOrderOfTheBytesBelow) {
+  std::mt19937_64 random(11);
+  const size_t count = 5000;
+  std::vector<uint64_t> keys(count), scratch(count);
+  // Few distinct high parts: most keys tie above byte 3, and the low bytes decide.
+  for (size_t i = 0; i < count; ++i) keys[i] = (random() % 16) << 40 | (random() % 4) << 24 | i;
+  std::vector<uint64_t> expected = keys;
+  std::sort(expected.begin(), expected.end());
+  detail::radix_sort(keys.data(), scratch.data(), count, 3);
+  EXPECT_EQ(keys, expected);
+  std::reverse(keys.begin(), keys.end());
+  detail::radix_sort(keys.data(), scratch.data(), count, 3);
+  EXPECT_NE(keys, expected);  // the low bytes were not sorted on
+}
+
 TEST(KdBuild, ReportsItsPhaseTimes) {
   const Scene scene = test::triangle_soup(5000, 4);
   BuildTimings timings{-1, -1, -1, -1, -1};

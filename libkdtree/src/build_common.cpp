@@ -137,23 +137,23 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
 }
 
 void classify(const Event* events, size_t count, const SplitChoice& split, uint8_t* sides) {
+  // Without a branch on the type (it is unpredictable): each event's side bit comes from a
+  // table by its type and how it lies to the plane. An end on or below the plane and a start on
+  // or above it cannot both be a triangle's (its start lies below its end), so OR-ing in each
+  // event's bit never marks both sides.
+  const uint8_t planar_side = split.planar_left ? kLeftOnly : kRightOnly;
+  // Index: type << 2 | (position < plane) << 1 | (position == plane).
+  const uint8_t side_bits[12] = {
+      0, kLeftOnly, kLeftOnly, kLeftOnly,                  // end: left when on or below the plane
+      kRightOnly, planar_side, kLeftOnly, kLeftOnly,       // planar: above, in the plane, below
+      kRightOnly, kRightOnly, 0, 0,                        // start: right when on or above it
+  };
+  const float plane = split.position;
   for (size_t i = 0; i < count; ++i) {
     const Event& event = events[i];
     const float p = event.position;
-    switch (event.type()) {
-      case kEventEnd:
-        if (p <= split.position) sides[event.triangle()] = kLeftOnly;
-        break;
-      case kEventStart:
-        if (p >= split.position) sides[event.triangle()] = kRightOnly;
-        break;
-      case kEventPlanar:
-        if (p < split.position || (p == split.position && split.planar_left))
-          sides[event.triangle()] = kLeftOnly;
-        else
-          sides[event.triangle()] = kRightOnly;
-        break;
-    }
+    const uint32_t index = event.type() << 2 | uint32_t{p < plane} << 1 | uint32_t{p == plane};
+    sides[event.triangle()] |= side_bits[index];
   }
 }
 

@@ -220,7 +220,8 @@ enum Side : uint8_t { kBothSides = 0, kLeftOnly = 1, kRightOnly = 2, kNeitherSid
 
 // Sides of each local triangle for `split`, from the events of the split axis (Wald & Havran):
 // a triangle ending on or below the plane goes left, one starting on or above it right, one in
-// the plane to the chosen side; all others straddle and go to both.
+// the plane to the chosen side; all others straddle and go to both. `sides` must hold
+// kBothSides for every triangle: each event adds its side's bit to it, at most one per triangle.
 void classify(const Event* events, size_t count, const SplitChoice& split, uint8_t* sides);
 
 // How a divided node renumbers the kept events of a triangle that only one child gets: an

@@ -78,10 +78,10 @@ bool CostModel::split_pays(const SplitChoice& split, uint64_t n, const Box3& vox
 
 namespace {
 
-// What an event adds to the counts of its run of equal positions, by type: ends and planar
-// ones leave the right side at their position (low half), starts and planar ones join the
-// left side after it (high half). A run has fewer than 2^32 events (2 per triangle, fewer
-// than 2^30 triangles), so the halves do not spill into each other.
+// What an event adds to the running counts, by type: ends and planar ones leave the right side
+// at their position (low half), starts and planar ones join the left side after it (high
+// half). A node has fewer than 2^32 events (2 per triangle, fewer than 2^30 triangles), so the
+// halves do not spill into each other.
 constexpr uint64_t kRunCounts[4] = {1, 1 | uint64_t{1} << 32, uint64_t{1} << 32, 0};
 
 }  // namespace
@@ -90,48 +90,70 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
                 const CostModel& cost, SplitChoice& best) {
   const SplitAreas areas(voxel, axis);
   if (!areas.has_area() || count == 0) return;
-  uint64_t n_left = 0, n_right = triangles;
   // A local copy: `best` might alias the events, which would force reloads.
   SplitChoice best_here = best;
-  size_t i = 0;
-  // Events of one position come ends first, then planar, then starts (the event order); a
-  // run's counts are one sum, without a branch on the type. Planar events are in both halves.
-  uint64_t leaving_right = 0, joining_left = 0, planar = 0;
-  auto scan_run = [&](float position) {
-    const size_t run_start = i;
-    uint64_t counts = 0;
-    do {
+  // The events are swept a chunk at a time, in two passes. Which event ends a run of equal
+  // positions is unpredictable, so the first pass finds the runs without a branch on it: it
+  // writes the running counts and the event's index at the slot of the run in progress and
+  // moves to the next slot where the position changes. The second pass costs the runs.
+  // Events of one position come ends first, then planar, then starts (the event order), and
+  // the running counts are one sum without a branch on the type. Slot 0 holds the last run of
+  // the chunk before (no events before the first).
+  constexpr size_t kChunk = 256;
+  uint64_t run_counts[kChunk + 2];  // counts through the run's last event
+  size_t run_last[kChunk + 2];      // the index of the run's last event
+  run_counts[0] = 0;
+  run_last[0] = SIZE_MAX;  // the first run starts at 0
+  uint64_t counts = 0;
+  bool first_run = true;
+  auto ends = [](uint64_t c) { return c & 0xffffffffu; };
+  auto starts = [](uint64_t c) { return c >> 32; };
+  for (size_t begin = 0; begin < count; begin += kChunk) {
+    const size_t end = std::min(count, begin + kChunk);
+    const bool last_chunk = end == count;
+    size_t runs = 1;
+    auto add = [&](size_t i) {
       counts += kRunCounts[events[i].type()];
-      ++i;
-    } while (i < count && events[i].position == position);
-    leaving_right = counts & 0xffffffffu;
-    joining_left = counts >> 32;
-    planar = leaving_right + joining_left - (i - run_start);
-  };
-  // The first run, where a side may be empty and the plane may be the voxel's face: peeled off
-  // the loop, which a per-run test for it made longer (bench/LOG.md, "Tree build, fifth pass").
-  float position = events[0].position;
-  scan_run(position);
-  n_right -= leaving_right;
-  consider_split(cost, areas, axis, position, n_left, n_right, planar, best_here);
-  n_left += joining_left;
-  while (i < count) {
-    position = events[i].position;
-    scan_run(position);
-    n_right -= leaving_right;
-    if (i == count || planar != 0) {
-      consider_split(cost, areas, axis, position, n_left, n_right, planar, best_here);
-    } else {
-      // A run between the first and the last lies strictly inside the voxel (positions are
-      // sorted and within it), with a triangle on each side: the first run holds a start or a
-      // planar event, the last an end or a planar one. So its costing needs neither the
-      // voxel-face case of the areas nor the empty bonus, and a first candidate exists:
-      // without planar triangles, consider_split's arithmetic without its branches.
-      const double split_cost = cost.split_cost_both_sides(areas.below_inside(position), areas.above_inside(position),
-                                                           n_left, n_right);
-      if (split_cost < best_here.cost) best_here = SplitChoice{split_cost, axis, position, true, n_left, n_right};
+      run_counts[runs] = counts;
+      run_last[runs] = i;
+    };
+    const size_t paired_end = std::min(end, count - 1);
+    for (size_t i = begin; i < paired_end; ++i) {
+      add(i);
+      // Sorted, so a different position is a greater one; -0 and +0 are one run.
+      runs += events[i + 1].position > events[i].position;
     }
-    n_left += joining_left;
+    if (last_chunk) {
+      add(count - 1);
+      ++runs;
+    }
+    const size_t last_run = last_chunk ? runs - 1 : 0;  // slot 0 is never costed
+    for (size_t r = 1; r < runs; ++r) {
+      const uint64_t through = run_counts[r], before = run_counts[r - 1];
+      const size_t run_start = run_last[r - 1] + 1;
+      const float position = events[run_start].position;  // the first event's: -0 or +0
+      const uint64_t n_left = starts(before), n_right = triangles - ends(through);
+      // Each event counts once in ends + starts, a planar one twice.
+      const uint64_t planar = (ends(through) + starts(through) - (run_last[r] + 1)) -
+                              (ends(before) + starts(before) - run_start);
+      if (first_run | (r == last_run) | (planar != 0)) {
+        // The first and the last run, where a side may be empty and the plane may be the
+        // voxel's face, and runs with planar triangles, tried on both sides.
+        consider_split(cost, areas, axis, position, n_left, n_right, planar, best_here);
+        first_run = false;
+      } else {
+        // A run between the first and the last lies strictly inside the voxel (positions are
+        // sorted and within it), with a triangle on each side: the first run holds a start or
+        // a planar event, the last an end or a planar one. So its costing needs neither the
+        // voxel-face case of the areas nor the empty bonus: consider_split's arithmetic
+        // without its branches.
+        const double split_cost =
+            cost.split_cost_both_sides(areas.below_inside(position), areas.above_inside(position), n_left, n_right);
+        if (split_cost < best_here.cost) best_here = SplitChoice{split_cost, axis, position, true, n_left, n_right};
+      }
+    }
+    run_counts[0] = run_counts[runs - 1];
+    run_last[0] = run_last[runs - 1];
   }
   best = best_here;
 }

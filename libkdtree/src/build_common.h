@@ -287,7 +287,7 @@ struct Subtree {
 // Room for the two children, at `depth`, of a node that a depth-first build splits: per thread
 // and per depth, its arrays keep their capacity from node to node, so that building allocates
 // nothing once it is warm. A depth's room is made when a build first reaches it, so a thread
-// holds room only for the depths it builds at (the small-node path's fixed arrays are 20 KB a
+// holds room only for the depths it builds at (the small-node path's fixed arrays are 40 KB a
 // depth, and it runs only deep in the tree).
 template <typename Node>
 std::array<Node, 2>& children_at_depth(uint32_t depth) {
@@ -298,9 +298,10 @@ std::array<Node, 2>& children_at_depth(uint32_t depth) {
 }
 
 // Nodes of at most this many triangles are built by build_small_subtree, whose fixed arrays
-// cost less per node than the general path's vectors: at 128 the build measured shorter than
-// at 32 or 64, and no shorter at 256 (bench/LOG.md, "Tree build, fifth pass").
-constexpr size_t kSmallNodeTriangles = 128;
+// cost less per node than the general path's vectors: 128 measured shorter than 32 or 64
+// (bench/LOG.md, "Tree build, fifth pass"), and 256 shorter than 128 once the sweep found its
+// runs without branches ("Tree build, sixth pass").
+constexpr size_t kSmallNodeTriangles = 256;
 
 struct SmallBuildParameters {
   CostModel cost;

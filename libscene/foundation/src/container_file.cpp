@@ -149,8 +149,8 @@ void write_container(const std::string& path, const ContainerHeaderInfo& info,
   // that records it is written last, over a placeholder. Pieces are 1 MiB. Whole 2 MiB pieces
   // at 2 MiB offsets make the page cache hold the file in 2 MiB folios, which a reader that maps
   // it gets as huge pages; but allocating those folios cost a large tree's build more than
-  // writing its bytes (bench/LOG.md, "The tree file written in 1 MiB pieces"), and the page
-  // cache splits them again as the file ages. Readers that trace many rays copy the tree into
+  // writing its bytes (bench/LOG.md, "Tree build, sixth pass"), and a file read back after it
+  // was reclaimed comes in small folios anyway. Readers that trace many rays copy the tree onto
   // huge pages of their own instead (copy_tree_for_rays).
   static const char kZeros[format::kSectionAlignment] = {};
   AtomicFile output(path);

@@ -71,7 +71,7 @@ TEST_F(KdTreeFile, RoundTripKeepsEverything) {
   EXPECT_NO_THROW(check_tree_matches_scene(back, "a.kdtree", geometry_of(scene_), "s.kdscene"));
 }
 
-// build_tree_file makes the leaf blocks as it writes them, a 2 MiB piece of the file at a time,
+// build_tree_file makes the leaf blocks as it writes them, a 1 MiB piece of the file at a time,
 // blocks cut at the pieces' edges: the file must be the one write_tree writes.
 TEST_F(KdTreeFile, BuiltStraightIntoItsFileIsTheFileWriteTreeWrites) {
   const Scene scene = test::icosphere_scene(6, {0, 0, 0}, 1);  // 81,920 triangles

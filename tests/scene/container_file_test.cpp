@@ -28,7 +28,7 @@ class ContainerWriter : public test::TempDirTest<> {
 
 TEST_F(ContainerWriter, MadeSectionsGiveTheBytesOfWholeOnes) {
   constexpr uint64_t kMiB = uint64_t{1} << 20;
-  // Sizes that start and end inside 2 MiB pieces, span several, share one with the section
+  // Sizes that start and end inside 1 MiB pieces, span several, share one with the section
   // after them, and one that is empty.
   const std::vector<uint64_t> sizes = {3 * kMiB + 5, 5 * kMiB + 123, 100, 2 * kMiB + 7, 0, 4 * kMiB};
   std::vector<std::vector<char>> contents;

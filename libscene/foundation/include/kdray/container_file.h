@@ -19,7 +19,7 @@ namespace kdray {
 
 // A section's `size` bytes: at `data`, or, where `produce` is set instead, made as the file is
 // written: produce(begin, end, out) writes the section's bytes [begin, end) to out, a piece of at
-// most 2 MiB at a time. A large section made from other data is then never held whole in memory
+// most 1 MiB at a time. A large section made from other data is then never held whole in memory
 // beside the file it goes to.
 struct SectionData {
   uint32_t id;

@@ -97,11 +97,11 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
   // writes the running counts and the event's index at the slot of the run in progress and
   // moves to the next slot where the position changes. The second pass costs the runs.
   // Events of one position come ends first, then planar, then starts (the event order), and
-  // the running counts are one sum without a branch on the type. Slot 0 holds the last run of
-  // the chunk before (no events before the first).
+  // the running counts are one sum without a branch on the type. Slot 0 holds the last run
+  // completed before the chunk (none before the first run: counts 0, ending before event 0).
   constexpr size_t kChunk = 256;
-  uint64_t run_counts[kChunk + 2];  // counts through the run's last event
-  size_t run_last[kChunk + 2];      // the index of the run's last event
+  uint64_t run_counts[kChunk + 1];  // counts through the run's last event
+  size_t run_last[kChunk + 1];      // the index of the run's last event
   run_counts[0] = 0;
   run_last[0] = SIZE_MAX;  // the first run starts at 0
   uint64_t counts = 0;

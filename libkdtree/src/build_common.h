@@ -42,7 +42,8 @@ bool triangle_bounds_in_voxel(const Scene& scene, uint32_t triangle, const Box3&
                               Box3& out);
 
 // The bounds of a triangle in both children of a split on `axis`, `child_voxels` below and above
-// it (they differ from the parent voxel only on `axis`), false where it leaves nothing. With
+// it (they differ from the parent voxel only on `axis`, where the first's max is the second's
+// min, the split plane), false where it leaves nothing. With
 // perfect splits, the triangle clipped by the parent voxel's planes once, then the polygon left
 // by the split plane for each child (Sutherland-Hodgman in double, rounded outwards to float);
 // without, its bounds in the parent voxel, `parent_bounds`, intersected with each child voxel.

@@ -79,7 +79,10 @@ class SmallBuilder {
     return split;
   }
 
-  void divide(const SmallNode& node, const SplitChoice& split, SmallNode& left, SmallNode& right) const {
+  // Not inlined into the recursion of build(): its scratch arrays (32 KB) would then be on the
+  // stack once per level of the subtree.
+  [[gnu::noinline]] void divide(const SmallNode& node, const SplitChoice& split, SmallNode& left,
+                                SmallNode& right) const {
     const size_t n = node.count;
     uint8_t sides[kSmallNodeTriangles];
     classify_by_bounds(node.bounds, n, split, sides);

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstring>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace kdray {
@@ -94,6 +95,42 @@ TEST(SweepAxis, FindsTheSplitThatCostingEveryPlaneFinds) {
     EXPECT_EQ(swept.n_left, expected.n_left);
     EXPECT_EQ(swept.n_right, expected.n_right);
   }
+}
+
+// The sweep takes its events 256 at a time: runs of equal positions that end just before, at and
+// after a chunk's edge, middle and last runs that span edges, and event counts around multiples
+// of the chunk.
+TEST(SweepAxis, FindsTheSameSplitWithRunsAcrossChunkEdges) {
+  const Box3 voxel{{0, 0, 0}, {1, 1, 1}};
+  const CostModel cost{15.0, 20.0, 0.8};
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> low(0.05f, 0.45f), high(0.55f, 0.95f);
+  size_t cases = 0;
+  for (size_t lead : {0, 1, 127, 128, 129, 254, 255, 256, 257})
+    for (size_t run : {1, 130, 256, 300})
+      for (bool long_last_run : {false, true}) {
+        std::vector<Box3> bounds;
+        auto add = [&](float lo, float hi) { bounds.push_back(Box3{{lo, 0, 0}, {hi, 1, 1}}); };
+        for (size_t i = 0; i < lead; ++i) add(low(random), high(random));
+        for (size_t i = 0; i < run; ++i) add(0.5f, high(random));  // a middle run of starts at 0.5
+        if (long_last_run)
+          for (size_t i = 0; i < 200; ++i) add(low(random), 0.97f);  // ends at 0.97, after every other
+        std::vector<Event> events;
+        for (size_t i = 0; i < bounds.size(); ++i) append_events(events, bounds[i], 0, static_cast<uint32_t>(i));
+        std::sort(events.begin(), events.end());
+        SplitChoice swept;
+        sweep_axis(events.data(), events.size(), 0, voxel, bounds.size(), cost, swept);
+        const SplitChoice expected = every_plane(bounds, events, 0, voxel, cost);
+        SCOPED_TRACE(std::to_string(lead) + " leading boxes, a run of " + std::to_string(run) + ", " +
+                     std::to_string(events.size()) + " events");
+        ASSERT_EQ(swept.axis, expected.axis);
+        EXPECT_EQ(swept.cost, expected.cost);
+        EXPECT_EQ(swept.position, expected.position);
+        EXPECT_EQ(swept.n_left, expected.n_left);
+        EXPECT_EQ(swept.n_right, expected.n_right);
+        ++cases;
+      }
+  EXPECT_EQ(cases, 72u);
 }
 
 // A long first run above empty space at the bottom of the voxel: its split cuts off that space

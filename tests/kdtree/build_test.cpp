@@ -189,10 +189,11 @@ TEST(KdBuild, ReferenceBuilderAgreesOnGeneratedScenes) {
 
 TEST(KdBuild, ReferenceBuilderAgreesAroundTheSmallNodeThreshold) {
   // Roots just below, at and above the size the builder switches to its fixed-size small-node
-  // path, with and without clipping: the same tree as re-sorting every node.
+  // path (kSmallNodeTriangles, 256), with and without clipping: the same tree as re-sorting
+  // every node.
   BuildSettings no_clipping;
   no_clipping.perfect_splits = false;
-  for (size_t triangles : {size_t{1}, size_t{31}, size_t{32}, size_t{33}, size_t{64}, size_t{65}, size_t{400}})
+  for (size_t triangles : {size_t{1}, size_t{33}, size_t{128}, size_t{255}, size_t{256}, size_t{257}, size_t{600}})
     for (const BuildSettings& settings : {BuildSettings{}, no_clipping}) {
       const Scene scene = test::triangle_soup(triangles, static_cast<uint32_t>(triangles));
       EXPECT_TRUE(same_tree(build_kdtree(scene, settings), test::build_kdtree_by_resorting(scene, settings)))

@@ -135,7 +135,7 @@ class PointBounds {
     empty_ = false;
   }
   bool empty() const { return empty_; }
-  // As ClippedPolygon::bounds_in: rounded outwards to float, within `voxel`.
+  // The bounds rounded outwards to float, within `voxel`.
   bool in(const Box3& voxel, Box3& out) const {
     Box3 clipped_box;
     for (int k = 0; k < 3; ++k) {
@@ -212,18 +212,11 @@ class ClippedPolygon {
   // The polygon's bounds rounded outwards to float, within `voxel`.
   bool bounds_in(const Box3& voxel, Box3& out) const {
     const Polygon& polygon = buffers_[current_];
-    Box3 clipped_box;
-    for (int k = 0; k < 3; ++k) {
-      double lo = polygon.points[0][k], hi = lo;
-      for (int i = 1; i < polygon.size; ++i) {
-        lo = std::min(lo, polygon.points[i][k]);
-        hi = std::max(hi, polygon.points[i][k]);
-      }
-      clipped_box.min[k] = round_down(lo);
-      clipped_box.max[k] = round_up(hi);
-    }
-    return intersect_boxes(clipped_box, voxel, out);
+    PointBounds bounds;
+    for (int i = 0; i < polygon.size; ++i) bounds.add(polygon.points[i]);
+    return bounds.in(voxel, out);
   }
+
 
  private:
   Box3 triangle_box_;

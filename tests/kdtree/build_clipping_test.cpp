@@ -108,12 +108,6 @@ TEST(KdBuildClipping, StraddlersBoundsAreEachChildsClippedTriangle) {
   EXPECT_GT(clipped_sides, 2 * straddlers - 100);
 }
 
-uint32_t bits_of(float value) {
-  uint32_t bits;
-  std::memcpy(&bits, &value, sizeof bits);
-  return bits;
-}
-
 // A triangle inside its parent voxel meets only the split plane, in the children as from
 // scratch: the same points, so the same bounds bit for bit. The split plane runs through the
 // middle corner in every fourth case (a corner on the plane belongs to both sides).
@@ -158,8 +152,8 @@ TEST(KdBuildClipping, StraddlersInsideTheParentVoxelAreEachChildsClippedTriangle
       const bool reaches = triangle_bounds_in_voxel(scene, t, children[c], true, from_scratch);
       ASSERT_EQ(straddler.reaches[c], reaches) << "triangle " << t << " child " << c;
       for (int k = 0; k < 3; ++k) {
-        EXPECT_EQ(bits_of(straddler.bounds[c].min[k]), bits_of(from_scratch.min[k])) << "triangle " << t;
-        EXPECT_EQ(bits_of(straddler.bounds[c].max[k]), bits_of(from_scratch.max[k])) << "triangle " << t;
+        EXPECT_EQ(std::memcmp(&straddler.bounds[c].min[k], &from_scratch.min[k], sizeof(float)), 0) << "triangle " << t;
+        EXPECT_EQ(std::memcmp(&straddler.bounds[c].max[k], &from_scratch.max[k], sizeof(float)), 0) << "triangle " << t;
       }
     }
   }

@@ -43,12 +43,6 @@ SplitChoice every_plane(const std::vector<Box3>& bounds, const std::vector<Event
   return best;
 }
 
-uint32_t bits_of(float value) {
-  uint32_t bits;
-  std::memcpy(&bits, &value, sizeof bits);
-  return bits;
-}
-
 // `count` boxes in the voxel [-1, 1] on the axis; `runs` of them start or end on a few shared
 // positions (the faces, 0 as -0 and +0, one inside), some of them planar.
 std::vector<Box3> boxes(size_t count, uint32_t seed, int axis) {
@@ -90,7 +84,7 @@ TEST(SweepAxis, FindsTheSplitThatCostingEveryPlaneFinds) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     ASSERT_EQ(swept.axis, expected.axis);
     EXPECT_EQ(swept.cost, expected.cost);
-    EXPECT_EQ(bits_of(swept.position), bits_of(expected.position));
+    EXPECT_EQ(std::memcmp(&swept.position, &expected.position, sizeof(float)), 0);  // -0 is not +0
     EXPECT_EQ(swept.planar_left, expected.planar_left);
     EXPECT_EQ(swept.n_left, expected.n_left);
     EXPECT_EQ(swept.n_right, expected.n_right);

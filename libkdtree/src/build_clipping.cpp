@@ -217,7 +217,6 @@ class ClippedPolygon {
     return bounds.in(voxel, out);
   }
 
-
  private:
   Box3 triangle_box_;
   Polygon buffers_[2];

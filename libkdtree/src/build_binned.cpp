@@ -115,6 +115,14 @@ class BinnedBuilder {
     out.position = split.position;
     out.below = std::make_unique<Piece>();
     out.above = std::make_unique<Piece>();
+    const int whole_side = side_taking_all(split, node.triangles.size());
+    if (whole_side >= 0) {
+      context_.finished.report(node.depth + 1);  // the empty child
+      node.voxel = child_voxel(node.voxel, split, whole_side);
+      ++node.depth;
+      build(node, whole_side == 0 ? *out.below : *out.above);
+      return;
+    }
     BinnedNode left, right;
     divide(node, split, left, right);
     node = BinnedNode{};  // the parent's arrays are not needed while the children build

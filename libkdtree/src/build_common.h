@@ -217,6 +217,21 @@ inline void consider_split(const CostModel& cost, const SplitAreas& areas, int a
 void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, uint64_t triangles,
                 const CostModel& cost, SplitChoice& best);
 
+// The child that `split` of a node of `n` triangles gives all of them to, whole (0 below, 1
+// above), or -1 when both get some. That child's triangles, bounds and events are then the
+// node's, in the same order, and the other child is an empty leaf: most splits of a tree's
+// lower levels cut off empty space like this, and its node need not be divided.
+inline int side_taking_all(const SplitChoice& split, uint64_t n) {
+  if (split.n_left == n && split.n_right == 0) return 0;
+  if (split.n_right == n && split.n_left == 0) return 1;
+  return -1;
+}
+
+// The voxel of the child on `side` (0 below, 1 above) of `split`.
+inline Box3 child_voxel(const Box3& voxel, const SplitChoice& split, int side) {
+  return side == 0 ? below_plane(voxel, split.axis, split.position) : above_plane(voxel, split.axis, split.position);
+}
+
 enum Side : uint8_t { kBothSides = 0, kLeftOnly = 1, kRightOnly = 2, kNeitherSide = 3 };
 
 // Sides of each local triangle for `split`, from the events of the split axis (Wald & Havran):

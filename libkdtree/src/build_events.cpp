@@ -115,6 +115,13 @@ class EventBuilder {
     out.position = split.position;
     out.below = std::make_unique<Piece>();
     out.above = std::make_unique<Piece>();
+    const int whole_side = side_taking_all(split, n);
+    if (whole_side >= 0) {
+      finished_.report(work.depth + 1);  // the empty child
+      become_child(work, split, whole_side);
+      build(work, whole_side == 0 ? *out.below : *out.above);
+      return;
+    }
     NodeWork left, right;
     divide(work, split, left, right);
     work = NodeWork{};  // the parent's arrays are not needed while the children build
@@ -144,7 +151,8 @@ class EventBuilder {
   }
 
   // Depth first on one thread.
-  void build_serial(const NodeWork& work, Subtree& out) const {
+  // `work` is changed into its own child where a split sends it whole to one side.
+  void build_serial(NodeWork& work, Subtree& out) const {
     if (work.triangles.size() <= kSmallNodeTriangles) {
       const Event* const events[3] = {work.events[0].data(), work.events[1].data(), work.events[2].data()};
       const size_t counts[3] = {work.events[0].size(), work.events[1].size(), work.events[2].size()};
@@ -157,6 +165,13 @@ class EventBuilder {
       out.add_leaf(work.triangles.data(), work.triangles.size());
       return;
     }
+    const int whole_side = side_taking_all(split, work.triangles.size());
+    if (whole_side >= 0) {
+      become_child(work, split, whole_side);
+      out.add_inner(split.axis, split.position, [&] { if (whole_side == 0) build_serial(work, out); },
+                    [&] { if (whole_side == 1) build_serial(work, out); });
+      return;
+    }
     std::array<NodeWork, 2>& children = children_at_depth<NodeWork>(work.depth + 1);
     divide(work, split, children[0], children[1]);
     out.add_inner(split.axis, split.position, [&] { build_serial(children[0], out); },
@@ -164,6 +179,13 @@ class EventBuilder {
   }
 
  private:
+  // `work` made the child on `side` of `split` that holds all its triangles (side_taking_all):
+  // only its voxel and depth change.
+  static void become_child(NodeWork& work, const SplitChoice& split, int side) {
+    work.voxel = child_voxel(work.voxel, split, side);
+    ++work.depth;
+  }
+
   // Fills the two children of `work` (their arrays are overwritten; their capacity is kept).
   void divide(const NodeWork& work, const SplitChoice& split, NodeWork& left, NodeWork& right) const {
     const size_t n = work.triangles.size();

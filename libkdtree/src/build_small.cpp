@@ -57,10 +57,20 @@ class SmallBuilder {
   SmallBuilder(const Scene& scene, const SmallBuildParameters& parameters)
       : scene_(scene), parameters_(parameters) {}
 
-  void build(const SmallNode& node, Subtree& out) const {
+  // `node` is the parent's room for it, and is changed into its own child where a split sends
+  // it whole to one side.
+  void build(SmallNode& node, Subtree& out) const {
     const SplitChoice split = choose_split(node);
     if (split.axis < 0) {
       out.add_leaf(node.triangles, node.count);
+      return;
+    }
+    const int whole_side = side_taking_all(split, node.count);
+    if (whole_side >= 0) {
+      node.voxel = child_voxel(node.voxel, split, whole_side);
+      ++node.depth;
+      out.add_inner(split.axis, split.position, [&] { if (whole_side == 0) build(node, out); },
+                    [&] { if (whole_side == 1) build(node, out); });
       return;
     }
     std::array<SmallNode, 2>& children = children_at_depth<SmallNode>(node.depth + 1);

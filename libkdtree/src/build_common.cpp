@@ -100,6 +100,7 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
   // the running counts are one sum without a branch on the type. Slot 0 holds the last run
   // completed before the chunk (none before the first run: counts 0, ending before event 0).
   constexpr size_t kChunk = 256;
+  constexpr size_t kRunGroup = 4;
   uint64_t run_counts[kChunk + 1];  // counts through the run's last event
   size_t run_last[kChunk + 1];      // the index of the run's last event
   run_counts[0] = 0;
@@ -128,28 +129,48 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
       ++runs;
     }
     const size_t last_run = last_chunk ? runs - 1 : 0;  // slot 0 is never costed
-    for (size_t r = 1; r < runs; ++r) {
-      const uint64_t through = run_counts[r], before = run_counts[r - 1];
-      const size_t run_start = run_last[r - 1] + 1;
-      const float position = events[run_start].position;  // the first event's: -0 or +0
-      const uint64_t n_left = starts(before), n_right = triangles - ends(through);
-      // Each event counts once in ends + starts, a planar one twice.
-      const uint64_t planar = (ends(through) + starts(through) - (run_last[r] + 1)) -
-                              (ends(before) + starts(before) - run_start);
-      if (first_run | (r == last_run) | (planar != 0)) {
-        // The first and the last run, where a side may be empty and the plane may be the
-        // voxel's face, and runs with planar triangles, tried on both sides.
-        consider_split(cost, areas, axis, position, n_left, n_right, planar, best_here);
-        first_run = false;
-      } else {
-        // A run between the first and the last lies strictly inside the voxel (positions are
-        // sorted and within it), with a triangle on each side: the first run holds a start or
-        // a planar event, the last an end or a planar one. So its costing needs neither the
-        // voxel-face case of the areas nor the empty bonus: consider_split's arithmetic
-        // without its branches.
-        const double split_cost =
-            cost.split_cost_both_sides(areas.below_inside(position), areas.above_inside(position), n_left, n_right);
-        if (split_cost < best_here.cost) best_here = SplitChoice{split_cost, axis, position, true, n_left, n_right};
+    for (size_t group = 1; group < runs; group += kRunGroup) {
+      const size_t group_end = std::min(runs, group + kRunGroup);
+      // A group of runs between the first and the last cannot hold a cheaper split when a
+      // floor of their costs is no lower than the best: the cost with the group's fewest
+      // triangles below (its first run's) and above (its last run's), its first run's area
+      // below and its last run's above. Every run's cost is computed by the same operations
+      // from values at least as large, all of them non-negative, and rounding is monotone, so
+      // the floor is at most each run's computed cost: skipping the group changes no choice.
+      const bool holds_end_run = (first_run && group == 1) || (last_run >= group && last_run < group_end);
+      if (!holds_end_run) {
+        const size_t last_in_group = group_end - 1;
+        const float first_position = events[run_last[group - 1] + 1].position;
+        const float last_position = events[run_last[last_in_group - 1] + 1].position;
+        const uint64_t fewest_left = starts(run_counts[group - 1]);
+        const uint64_t fewest_right = triangles - ends(run_counts[last_in_group]);
+        const double floor = cost.split_cost_both_sides(areas.below_inside(first_position),
+                                                        areas.above_inside(last_position), fewest_left, fewest_right);
+        if (floor >= best_here.cost) continue;
+      }
+      for (size_t r = group; r < group_end; ++r) {
+        const uint64_t through = run_counts[r], before = run_counts[r - 1];
+        const size_t run_start = run_last[r - 1] + 1;
+        const float position = events[run_start].position;  // the first event's: -0 or +0
+        const uint64_t n_left = starts(before), n_right = triangles - ends(through);
+        // Each event counts once in ends + starts, a planar one twice.
+        const uint64_t planar = (ends(through) + starts(through) - (run_last[r] + 1)) -
+                                (ends(before) + starts(before) - run_start);
+        if (first_run | (r == last_run) | (planar != 0)) {
+          // The first and the last run, where a side may be empty and the plane may be the
+          // voxel's face, and runs with planar triangles, tried on both sides.
+          consider_split(cost, areas, axis, position, n_left, n_right, planar, best_here);
+          first_run = false;
+        } else {
+          // A run between the first and the last lies strictly inside the voxel (positions are
+          // sorted and within it), with a triangle on each side: the first run holds a start or
+          // a planar event, the last an end or a planar one. So its costing needs neither the
+          // voxel-face case of the areas nor the empty bonus: consider_split's arithmetic
+          // without its branches.
+          const double split_cost =
+              cost.split_cost_both_sides(areas.below_inside(position), areas.above_inside(position), n_left, n_right);
+          if (split_cost < best_here.cost) best_here = SplitChoice{split_cost, axis, position, true, n_left, n_right};
+        }
       }
     }
     run_counts[0] = run_counts[runs - 1];

@@ -20,9 +20,8 @@ using namespace kdray::detail;
 // The split the sweep should find: every distinct position in event order, costed with
 // consider_split from counts taken over all bounds.
 SplitChoice every_plane(const std::vector<Box3>& bounds, const std::vector<Event>& events, int axis,
-                        const Box3& voxel, const CostModel& cost) {
+                        const Box3& voxel, const CostModel& cost, SplitChoice best) {
   const SplitAreas areas(voxel, axis);
-  SplitChoice best;
   for (size_t i = 0; i < events.size(); ++i) {
     if (i > 0 && events[i].position == events[i - 1].position) continue;
     const float p = events[i].position;
@@ -67,16 +66,16 @@ std::vector<Box3> boxes(size_t count, uint32_t seed, int axis) {
   return result;
 }
 
-// Sweeps the events of `bounds` on `axis` and expects the split that costing every plane finds,
-// bit for bit; returns that split.
+// Sweeps the events of `bounds` on `axis` after `earlier` (the best of the axes swept before)
+// and expects the split that costing every plane finds, bit for bit; returns that split.
 SplitChoice expect_the_split_of_every_plane(const std::vector<Box3>& bounds, int axis, const Box3& voxel,
-                                            const CostModel& cost) {
+                                            const CostModel& cost, const SplitChoice& earlier = SplitChoice{}) {
   std::vector<Event> events;
   for (size_t i = 0; i < bounds.size(); ++i) append_events(events, bounds[i], axis, static_cast<uint32_t>(i));
   std::sort(events.begin(), events.end());
-  SplitChoice swept;
+  SplitChoice swept = earlier;
   sweep_axis(events.data(), events.size(), axis, voxel, bounds.size(), cost, swept);
-  const SplitChoice expected = every_plane(bounds, events, axis, voxel, cost);
+  const SplitChoice expected = every_plane(bounds, events, axis, voxel, cost, earlier);
   EXPECT_EQ(swept.axis, expected.axis);
   EXPECT_EQ(swept.cost, expected.cost);
   EXPECT_EQ(std::memcmp(&swept.position, &expected.position, sizeof(float)), 0);  // -0 is not +0
@@ -95,6 +94,26 @@ TEST(SweepAxis, FindsTheSplitThatCostingEveryPlaneFinds) {
     const size_t count = seed % 4 == 0 ? 3 : 50 * seed;
     SCOPED_TRACE("seed " + std::to_string(seed));
     expect_the_split_of_every_plane(boxes(count, seed, axis), axis, voxel, cost);
+  }
+}
+
+// The sweep skips groups of runs whose costs cannot go below the best so far: after an earlier
+// axis's best a little above, equal to and below this axis's cheapest, it still finds every
+// cheaper split, and keeps the earlier one on a tie.
+TEST(SweepAxis, FindsEveryCheaperSplitAfterAnEarlierAxissBest) {
+  const Box3 voxel{{-1, -1, -1}, {1, 1, 1}};
+  const CostModel cost{15.0, 20.0, 0.8};
+  for (uint32_t seed = 1; seed <= 400; ++seed) {
+    const int axis = static_cast<int>(seed % 3);
+    // Mostly a few boxes, whose runs' costs differ most from one to the next.
+    const std::vector<Box3> bounds = boxes(seed % 40 == 0 ? 2 * seed : 4 + seed % 37, seed, axis);
+    const SplitChoice cheapest = expect_the_split_of_every_plane(bounds, axis, voxel, cost);
+    for (double factor : {0.5, 1.0, 1.0 + 1e-12, 1.001, 1.01, 1.1, 1.5}) {
+      SCOPED_TRACE("seed " + std::to_string(seed) + ", an earlier best at " + std::to_string(factor) + "x");
+      const SplitChoice earlier{cheapest.cost * factor, (axis + 1) % 3, 0.125f, true, 1, 1};
+      const SplitChoice found = expect_the_split_of_every_plane(bounds, axis, voxel, cost, earlier);
+      if (factor <= 1.0) EXPECT_EQ(found.axis, earlier.axis);
+    }
   }
 }
 

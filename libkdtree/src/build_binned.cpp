@@ -4,6 +4,7 @@
 // any is written. The tree is therefore the same for any thread count.
 #include "build_binned.h"
 
+#include "build_bins.h"
 #include "build_events.h"
 
 #include <tbb/blocked_range.h>
@@ -23,51 +24,6 @@ namespace {
 // Triangles per block of a node's division: a fixed size, so that what each block counts and
 // where it writes its triangles do not depend on the thread count.
 constexpr size_t kBlockTriangles = 8192;
-
-// The bin boundaries of one axis of a voxel: bins + 1 float positions from its min to its max.
-// They are the candidate planes, so a triangle's bins are found by the same float comparisons
-// with them that later divide the node: the counts are exactly the children's sizes (before
-// clipping drops a straddler from a side it only touches at a corner of its bounds).
-class AxisBins {
- public:
-  AxisBins(const Box3& voxel, int axis, uint32_t bins) : bins_(bins), boundaries_(bins + 1) {
-    const double lo = voxel.min[axis], hi = voxel.max[axis];
-    for (uint32_t k = 1; k < bins; ++k) boundaries_[k] = static_cast<float>(lo + (hi - lo) * k / bins);
-    boundaries_[0] = voxel.min[axis];
-    boundaries_[bins] = voxel.max[axis];
-    lo_ = lo;
-    scale_ = hi > lo ? bins / (hi - lo) : 0.0;
-  }
-
-  float boundary(uint32_t k) const { return boundaries_[k]; }
-  // The bin of a triangle starting at v: the last whose lower boundary is <= v, so that it
-  // starts below boundary k exactly when its bin is below k.
-  uint32_t bin_of_start(float v) const {
-    uint32_t k = estimate(v);
-    while (k > 0 && boundaries_[k] > v) --k;
-    while (k + 1 < bins_ && boundaries_[k + 1] <= v) ++k;
-    return k;
-  }
-  // The bin of a triangle ending at v: the first whose upper boundary is >= v, so that it ends
-  // above boundary k exactly when its bin is k or above.
-  uint32_t bin_of_end(float v) const {
-    uint32_t k = estimate(v);
-    while (k > 0 && boundaries_[k] >= v) --k;
-    while (k + 1 < bins_ && boundaries_[k + 1] < v) ++k;
-    return k;
-  }
-
- private:
-  // A guess from the arithmetic, corrected by the comparisons above.
-  uint32_t estimate(float v) const {
-    const double bin = (v - lo_) * scale_;
-    return bin <= 0.0 ? 0u : static_cast<uint32_t>(std::min<double>(bin, bins_ - 1));
-  }
-
-  uint32_t bins_;
-  std::vector<float> boundaries_;
-  double lo_, scale_;
-};
 
 // Per axis: triangles starting in each bin, ending in each bin, and lying in each boundary.
 class BinCounts {

@@ -80,6 +80,28 @@ TEST_F(KdrenderBatch, FramesEqualSingleCommandsBitForBit) {
   }
 }
 
+// The host traces a tree copied out of its file when the batch's rays on the host repay the
+// copy, as a single command on the host does; OpenCL devices read the mapping.
+TEST_F(KdrenderBatch, HostFramesTraceTheTreeCopiedOutOfItsFile) {
+  const std::string host_frames = "-o " + path("h0.exr") + " --device host\n-o " + path("h1.exr") + "\n";
+  test::ToolRun run = batch("host.jobs", host_frames, std::string(kDefaults) + " --json");
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  nlohmann::json report = nlohmann::json::parse(run.out);
+  EXPECT_EQ(report["tree_memory"], "copied");
+  EXPECT_GE(report["tree_copy_seconds"].get<double>(), 0.0);
+
+  run = batch("opencl.jobs", "-o " + path("c0.exr") + "\n", std::string(kDefaults) + " --json");
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  report = nlohmann::json::parse(run.out);
+  EXPECT_EQ(report["tree_memory"], "file mapping");
+  EXPECT_FALSE(report.contains("tree_copy_seconds"));
+
+  run = test::run_command(kdrender("-o " + path("single-host.exr") + " --device host --json " + kDefaults));
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_EQ(nlohmann::json::parse(run.out)["tree_memory"], "copied");
+  EXPECT_EQ(read_film_exr(path("single-host.exr")).sums, read_film_exr(path("h0.exr")).sums);
+}
+
 TEST_F(KdrenderBatch, ResumeSkipsOnlyCompleteFrames) {
   const std::string text = "-o " + path("r0.exr") + "\n-o " + path("r1.exr") + "\n-o " + path("r2.png") + "\n-o " +
                            path("r3.exr") + "\n";

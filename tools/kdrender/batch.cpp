@@ -26,7 +26,7 @@ const char* status_name(FrameOutcome::Status status) {
 
 }  // namespace
 
-int run_batch(const kdray::Scene& scene, const kdray::KdTree& tree, const FrameOptions& defaults,
+int run_batch(const kdray::Scene& scene, kdray::KdTree& tree, const FrameOptions& defaults,
               const BatchOptions& batch, double load_seconds) {
   const auto start = Clock::now();
   std::vector<JobLine> jobs = read_jobs(batch.jobs_path, defaults);
@@ -39,6 +39,16 @@ int run_batch(const kdray::Scene& scene, const kdray::KdTree& tree, const FrameO
       throw UsageError(batch.jobs_path + ":" + std::to_string(job.line_number) + ": " + e.what());
     }
   }
+
+  // The copy takes the threads of the first frame on the host.
+  uint64_t host_rays = 0;
+  const Frame* first_on_host = nullptr;
+  for (const Frame& frame : frames) {
+    host_rays += host_rays_of(frame);
+    if (!first_on_host && host_rays_of(frame) > 0) first_on_host = &frame;
+  }
+  const double copy_seconds =
+      first_on_host ? place_tree_for_host(tree, host_rays, first_on_host->device.threads) : -1;
 
   const uint64_t tree_hash = kdray::tree_content_hash(tree);
   const bool report = !batch.quiet && !batch.json;
@@ -86,9 +96,11 @@ int run_batch(const kdray::Scene& scene, const kdray::KdTree& tree, const FrameO
       }
       list.push_back(std::move(entry));
     }
-    kdray::tool::print_json({{"jobs", batch.jobs_path}, {"frames", list}, {"rendered", rendered},
-                             {"skipped", skipped}, {"failed", failed}, {"failed_frames", failures},
-                             {"load_seconds", load_seconds}, {"seconds", seconds}});
+    nlohmann::json summary = {{"jobs", batch.jobs_path}, {"frames", list},       {"rendered", rendered},
+                              {"skipped", skipped},       {"failed", failed},     {"failed_frames", failures},
+                              {"load_seconds", load_seconds}, {"seconds", seconds}};
+    add_tree_memory(summary, copy_seconds);
+    kdray::tool::print_json(summary);
   } else if (!batch.quiet) {
     std::printf("%s: %zu frames, %zu rendered, %zu skipped, %zu failed in %.2f s (load %.3f s)\n",
                 batch.jobs_path.c_str(), frames.size(), rendered, skipped, failed, seconds, load_seconds);

@@ -131,13 +131,7 @@ int render(const Options& o) {
 
   frame.settings = kdray::resolve_view(scene, frame.settings);
   kdrender::warn_if_default_light(scene, o.scene_path, frame);
-  if (frame.device.device == kdray::kHostDevice) {
-    // The host traces the tree in memory: copied out of its file onto huge pages when the
-    // paths' rays repay the copy, as kdtrace does.
-    const kdray::RenderSettings& s = frame.settings;
-    const uint64_t rays = uint64_t(s.width) * s.height * s.spp * (uint64_t(s.max_bounces) + 1);
-    kdray::copy_tree_for_rays(tree, rays, frame.device.threads);
-  }
+  const double copy_seconds = kdrender::place_tree_for_host(tree, kdrender::host_rays_of(frame), frame.device.threads);
   kdray::tool::ProgressBar progress("kdrender", !o.flags.quiet);
   kdrender::FrameResult result = kdrender::render_frame(scene, tree, frame, [&](uint32_t done, uint32_t total) {
     progress.update(double(done) / total, std::to_string(done) + "/" + std::to_string(total) + " spp");
@@ -146,6 +140,7 @@ int render(const Options& o) {
   if (o.flags.json) {
     nlohmann::json report = kdrender::frame_json(frame, result);
     report["load_seconds"] = load_seconds;
+    kdrender::add_tree_memory(report, copy_seconds);
     kdray::tool::print_json(report);
   } else if (!o.flags.quiet) {
     kdrender::print_frame_summary(frame, result);

@@ -23,8 +23,7 @@ class AxisBins {
     boundaries_[0] = voxel.min[axis];
     boundaries_[bins] = voxel.max[axis];
     search_ = boundaries_;
-    search_[0] = -std::numeric_limits<float>::infinity();
-    search_[bins] = std::numeric_limits<float>::infinity();
+    search_[0] = search_[bins] = std::numeric_limits<float>::quiet_NaN();
     lo_ = voxel.min[axis];
     scale_ = hi > lo ? static_cast<float>(bins / (hi - lo)) : 0.0f;
     last_bin_ = static_cast<float>(bins - 1);
@@ -49,16 +48,16 @@ class AxisBins {
   }
 
  private:
-  // A guess from the arithmetic (in float: the comparisons above correct it, mostly not at
-  // all), in [0, bins - 1].
+  // A guess from the arithmetic, in [0, bins - 1], which the searches above correct (float
+  // is enough for a guess).
   uint32_t estimate(float v) const {
     const float bin = (v - lo_) * scale_;
     return static_cast<uint32_t>(bin > 0.0f ? std::min(bin, last_bin_) : 0.0f);
   }
 
   std::vector<float> boundaries_;
-  // The boundaries with the voxel's faces as -inf and +inf: the searches stop at the first and
-  // the last bin without a test of their own.
+  // The boundaries with NaN for the voxel's faces: every comparison with NaN is false, so the
+  // searches stop at the first and the last bin without a range test, whatever v is.
   std::vector<float> search_;
   float lo_, scale_, last_bin_;
 };

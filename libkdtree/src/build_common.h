@@ -219,8 +219,8 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
 
 // The child that `split` of a node of `n` triangles gives all of them to, whole (0 below, 1
 // above), or -1 when both get some. That child's triangles, bounds and events are then the
-// node's, in the same order, and the other child is an empty leaf: most splits of a tree's
-// lower levels cut off empty space like this, and its node need not be divided.
+// node's, in the same order, and the other child is an empty leaf: many splits of a tree's
+// lower levels cut off empty space like this, and their nodes need not be divided.
 inline int side_taking_all(const SplitChoice& split, uint64_t n) {
   if (split.n_left == n && split.n_right == 0) return 0;
   if (split.n_right == n && split.n_left == 0) return 1;

@@ -101,8 +101,9 @@ class EventBuilder {
   void build(NodeWork& work, Piece& out) {
     const size_t n = work.triangles.size();
     if (n < kParallelTriangles) {
+      const uint32_t depth = work.depth;  // build_serial may make `work` its own child
       build_serial(work, out.serial);
-      finished_.report(work.depth);
+      finished_.report(depth);
       return;
     }
     const SplitChoice split = choose_split(work);

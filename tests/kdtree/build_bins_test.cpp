@@ -1,7 +1,8 @@
 // The bins of a binned node's axis (AxisBins) against their definition, searched for plane by
 // plane: a triangle starting at v is in the last bin whose lower boundary is <= v, one ending at
-// v in the first bin whose upper boundary is >= v. The values include every boundary itself and
-// its neighbouring floats, and voxels so thin for their coordinates that boundaries coincide.
+// v in the first bin whose upper boundary is >= v (the first and the last bin when there is none).
+// The values include every boundary itself and its neighbouring floats, and voxels so thin for
+// their coordinates that boundaries coincide, or wider than the float range.
 #include "build_bins.h"
 
 #include <gtest/gtest.h>
@@ -37,6 +38,9 @@ TEST(AxisBins, FindTheBinsTheirDefinitionGives) {
       {{1000.0f, 0, 0}, {1000.01f, 1, 1}},       // boundaries a few floats apart, some equal
       {{-3e5f, 0, 0}, {std::nextafter(-3e5f, 0.0f), 1, 1}},  // one float wide
       {{-1e30f, 0, 0}, {1e30f, 1, 1}},
+      {{-3e38f, 0, 0}, {3e38f, 1, 1}},  // an extent beyond the float range
+      {{5.0f, 0, 0}, {5.0f, 1, 1}},     // no extent: every boundary is 5
+      {{1.0f, 0, 0}, {std::nextafter(1.0f, 2.0f), 1, 1}},
   };
   for (const Box3& voxel : voxels)
     for (uint32_t count : {2u, 3u, 16u, 256u}) {
@@ -46,10 +50,11 @@ TEST(AxisBins, FindTheBinsTheirDefinitionGives) {
         const float boundary = bins.boundary(b);
         values.insert(values.end(), {boundary, std::nextafter(boundary, -INFINITY), std::nextafter(boundary, INFINITY)});
       }
-      std::uniform_real_distribution<float> inside(voxel.min[0], voxel.max[0]);
-      for (int i = 0; i < 200; ++i) values.push_back(inside(random));
+      std::uniform_real_distribution<double> unit(0.0, 1.0);
+      const double lo = voxel.min[0], hi = voxel.max[0];
+      for (int i = 0; i < 200; ++i) values.push_back(static_cast<float>(lo + (hi - lo) * unit(random)));
+      values.insert(values.end(), {-INFINITY, INFINITY});
       for (float v : values) {
-        if (v < voxel.min[0] || v > voxel.max[0]) continue;  // bounds lie in their voxel
         SCOPED_TRACE(std::to_string(count) + " bins of [" + std::to_string(voxel.min[0]) + ", " +
                      std::to_string(voxel.max[0]) + "], v " + std::to_string(v));
         EXPECT_EQ(bins.bin_of_start(v), start_bin_by_search(bins, count, v));

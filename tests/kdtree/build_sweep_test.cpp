@@ -100,7 +100,7 @@ TEST(SweepAxis, FindsTheSplitThatCostingEveryPlaneFinds) {
 // The sweep skips groups of runs whose costs cannot go below the best so far: after an earlier
 // axis's best a little above, equal to and below this axis's cheapest, it still finds every
 // cheaper split, and keeps the earlier one on a tie.
-TEST(SweepAxis, FindsEveryCheaperSplitAfterAnEarlierAxissBest) {
+TEST(SweepAxis, FindsEveryCheaperSplitAfterAnEarlierAxisBest) {
   const Box3 voxel{{-1, -1, -1}, {1, 1, 1}};
   const CostModel cost{15.0, 20.0, 0.8};
   for (uint32_t seed = 1; seed <= 400; ++seed) {
@@ -112,7 +112,9 @@ TEST(SweepAxis, FindsEveryCheaperSplitAfterAnEarlierAxissBest) {
       SCOPED_TRACE("seed " + std::to_string(seed) + ", an earlier best at " + std::to_string(factor) + "x");
       const SplitChoice earlier{cheapest.cost * factor, (axis + 1) % 3, 0.125f, true, 1, 1};
       const SplitChoice found = expect_the_split_of_every_plane(bounds, axis, voxel, cost, earlier);
-      if (factor <= 1.0) EXPECT_EQ(found.axis, earlier.axis);
+      if (factor <= 1.0) {
+        EXPECT_EQ(found.axis, earlier.axis);
+      }
     }
   }
 }

@@ -81,7 +81,8 @@ TEST_F(KdrenderBatch, FramesEqualSingleCommandsBitForBit) {
 }
 
 // The host traces a tree copied out of its file when the batch's rays on the host repay the
-// copy, as a single command on the host does; OpenCL devices read the mapping.
+// copy, as a single command on the host does (not when --resume finds every frame present);
+// OpenCL devices read the mapping.
 TEST_F(KdrenderBatch, HostFramesTraceTheTreeCopiedOutOfItsFile) {
   const std::string host_frames = "-o " + path("h0.exr") + " --device host\n-o " + path("h1.exr") + "\n";
   test::ToolRun run = batch("host.jobs", host_frames, std::string(kDefaults) + " --json");
@@ -89,6 +90,12 @@ TEST_F(KdrenderBatch, HostFramesTraceTheTreeCopiedOutOfItsFile) {
   nlohmann::json report = nlohmann::json::parse(run.out);
   EXPECT_EQ(report["tree_memory"], "copied");
   EXPECT_GE(report["tree_copy_seconds"].get<double>(), 0.0);
+  // Resumed with every frame present, the batch renders nothing and copies nothing.
+  run = batch("host.jobs", host_frames, std::string(kDefaults) + " --resume --json");
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  report = nlohmann::json::parse(run.out);
+  EXPECT_EQ(report["skipped"], 2);
+  EXPECT_EQ(report["tree_memory"], "file mapping");
 
   run = batch("opencl.jobs", "-o " + path("c0.exr") + "\n", std::string(kDefaults) + " --json");
   ASSERT_EQ(run.exit_code, 0) << run.out;

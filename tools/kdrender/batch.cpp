@@ -2,6 +2,7 @@
 
 #include "jobs.h"
 #include "render_frame.h"
+#include "tree_placement.h"
 
 #include <kdray/clock.h>
 
@@ -40,15 +41,12 @@ int run_batch(const kdray::Scene& scene, kdray::KdTree& tree, const FrameOptions
     }
   }
 
-  // The copy takes the threads of the first frame on the host.
-  uint64_t host_rays = 0;
-  const Frame* first_on_host = nullptr;
-  for (const Frame& frame : frames) {
-    host_rays += host_rays_of(frame);
-    if (!first_on_host && host_rays_of(frame) > 0) first_on_host = &frame;
-  }
-  const double copy_seconds =
-      first_on_host ? place_tree_for_host(tree, host_rays, first_on_host->device.threads) : -1;
+  // The tree is placed for the host before the first host frame that renders (not one skipped
+  // by --resume), for the rays of it and every host frame after it, with its threads.
+  std::vector<uint64_t> host_rays_from(frames.size() + 1, 0);
+  for (size_t i = frames.size(); i-- > 0;) host_rays_from[i] = host_rays_from[i + 1] + host_rays_of(frames[i]);
+  bool tree_placed = false;
+  double copy_seconds = -1;
 
   const uint64_t tree_hash = kdray::tree_content_hash(tree);
   const bool report = !batch.quiet && !batch.json;
@@ -64,6 +62,10 @@ int run_batch(const kdray::Scene& scene, kdray::KdTree& tree, const FrameOptions
         outcome.status = FrameOutcome::Skipped;
       } else {
         warn_if_default_light(scene, batch.scene_path, frame);
+        if (!tree_placed && host_rays_of(frame) > 0) {
+          copy_seconds = place_tree_for_host(tree, host_rays_from[i], frame.device.threads);
+          tree_placed = true;
+        }
         FrameResult result = render_frame(scene, tree, frame);
         outcome.stats = frame_json(frame, result);
       }

@@ -10,12 +10,12 @@
 #include "batch.h"
 #include "frame_options.h"
 #include "render_frame.h"
+#include "tree_placement.h"
 
 #include <kdray/clock.h>
 #include <kdray/image_io.h>
 #include <kdray/kdtree.h>
 #include <kdray/render.h>
-#include <kdray/traverse.h>
 #include <kdray/tree_cache.h>
 
 #include <device_option.h>

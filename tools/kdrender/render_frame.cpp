@@ -2,7 +2,6 @@
 
 #include <kdray/clock.h>
 #include <kdray/image_io.h>
-#include <kdray/traverse.h>
 #include <kdray/util.h>
 
 #include <tool_main.h>
@@ -31,24 +30,6 @@ FrameResult render_frame(const kdray::Scene& scene, const kdray::KdTree& tree, c
   kdray::write_film_image(frame.output, result.film);
   result.write_seconds = kdray::seconds_since(write_start);
   return result;
-}
-
-uint64_t host_rays_of(const Frame& frame) {
-  if (frame.device.device != kdray::kHostDevice) return 0;
-  const kdray::RenderSettings& s = frame.settings;
-  const uint64_t width = s.width ? s.width : kdray::RenderSettings::kDefaultSize;
-  const uint64_t height = s.height ? s.height : kdray::RenderSettings::kDefaultSize;
-  return width * height * s.spp * (uint64_t{s.max_bounces} + 1);
-}
-
-double place_tree_for_host(kdray::KdTree& tree, uint64_t host_rays, unsigned threads) {
-  const auto start = kdray::Clock::now();
-  return kdray::copy_tree_for_rays(tree, host_rays, threads) ? kdray::seconds_since(start) : -1;
-}
-
-void add_tree_memory(nlohmann::json& report, double copy_seconds) {
-  report["tree_memory"] = copy_seconds >= 0 ? "copied" : "file mapping";
-  if (copy_seconds >= 0) report["tree_copy_seconds"] = copy_seconds;
 }
 
 nlohmann::json frame_json(const Frame& frame, const FrameResult& result) {

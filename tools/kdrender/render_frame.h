@@ -21,18 +21,6 @@ struct FrameResult {
 FrameResult render_frame(const kdray::Scene& scene, const kdray::KdTree& tree, const Frame& frame,
                          const kdray::RenderProgress& progress = {});
 
-// The rays a frame traces at most on the host (--device host: pixels x samples x (bounces + 1),
-// a side left to the camera counted at the default size), 0 on an OpenCL device.
-uint64_t host_rays_of(const Frame& frame);
-
-// Where the host traces the tree: copied out of its file onto huge pages when `host_rays` repay
-// the copy (kdray::copy_tree_for_rays), or in its mapping. The seconds the copy took, -1 for none.
-double place_tree_for_host(kdray::KdTree& tree, uint64_t host_rays, unsigned threads);
-
-// The tree's place in a --json report: "tree_memory" ("copied" or "file mapping") and, after a
-// copy, "tree_copy_seconds".
-void add_tree_memory(nlohmann::json& report, double copy_seconds);
-
 // The frame's statistics (--json): output, device, sizes, samples, timings, rates.
 nlohmann::json frame_json(const Frame& frame, const FrameResult& result);
 

@@ -74,8 +74,7 @@ class BinnedBuilder {
     const int whole_side = side_taking_all(split, node.triangles.size());
     if (whole_side >= 0) {
       context_.finished.report(node.depth + 1);  // the empty child
-      node.voxel = child_voxel(node.voxel, split, whole_side);
-      ++node.depth;
+      become_child(node, split, whole_side);
       build(node, whole_side == 0 ? *out.below : *out.above);
       return;
     }

@@ -227,9 +227,13 @@ inline int side_taking_all(const SplitChoice& split, uint64_t n) {
   return -1;
 }
 
-// The voxel of the child on `side` (0 below, 1 above) of `split`.
-inline Box3 child_voxel(const Box3& voxel, const SplitChoice& split, int side) {
-  return side == 0 ? below_plane(voxel, split.axis, split.position) : above_plane(voxel, split.axis, split.position);
+// A builder's node (its voxel and depth; its arrays stay) made its child on `side` (0 below, 1
+// above) of `split`, the side taking all its triangles (side_taking_all).
+template <typename Node>
+void become_child(Node& node, const SplitChoice& split, int side) {
+  node.voxel = side == 0 ? below_plane(node.voxel, split.axis, split.position)
+                         : above_plane(node.voxel, split.axis, split.position);
+  ++node.depth;
 }
 
 enum Side : uint8_t { kBothSides = 0, kLeftOnly = 1, kRightOnly = 2, kNeitherSide = 3 };

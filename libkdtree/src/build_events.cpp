@@ -180,13 +180,6 @@ class EventBuilder {
   }
 
  private:
-  // `work` made the child on `side` of `split` that holds all its triangles (side_taking_all):
-  // only its voxel and depth change.
-  static void become_child(NodeWork& work, const SplitChoice& split, int side) {
-    work.voxel = child_voxel(work.voxel, split, side);
-    ++work.depth;
-  }
-
   // Fills the two children of `work` (their arrays are overwritten; their capacity is kept).
   void divide(const NodeWork& work, const SplitChoice& split, NodeWork& left, NodeWork& right) const {
     const size_t n = work.triangles.size();

@@ -67,8 +67,7 @@ class SmallBuilder {
     }
     const int whole_side = side_taking_all(split, node.count);
     if (whole_side >= 0) {
-      node.voxel = child_voxel(node.voxel, split, whole_side);
-      ++node.depth;
+      become_child(node, split, whole_side);
       out.add_inner(split.axis, split.position, [&] { if (whole_side == 0) build(node, out); },
                     [&] { if (whole_side == 1) build(node, out); });
       return;

@@ -2,11 +2,11 @@
 
 #include "jobs.h"
 #include "render_frame.h"
-#include "tree_placement.h"
 
 #include <kdray/clock.h>
 
 #include <tool_main.h>
+#include <tree_memory.h>
 
 #include <cstdio>
 
@@ -63,7 +63,7 @@ int run_batch(const kdray::Scene& scene, kdray::KdTree& tree, const FrameOptions
       } else {
         warn_if_default_light(scene, batch.scene_path, frame);
         if (!tree_placed && host_rays_of(frame) > 0) {
-          copy_seconds = place_tree_for_host(tree, host_rays_from[i], frame.device.threads);
+          copy_seconds = kdray::tool::copy_tree_if_repaid(tree, host_rays_from[i], frame.device.threads);
           tree_placed = true;
         }
         FrameResult result = render_frame(scene, tree, frame);
@@ -101,7 +101,7 @@ int run_batch(const kdray::Scene& scene, kdray::KdTree& tree, const FrameOptions
     nlohmann::json summary = {{"jobs", batch.jobs_path}, {"frames", list},       {"rendered", rendered},
                               {"skipped", skipped},       {"failed", failed},     {"failed_frames", failures},
                               {"load_seconds", load_seconds}, {"seconds", seconds}};
-    add_tree_memory(summary, copy_seconds);
+    kdray::tool::add_tree_memory(summary, copy_seconds);
     kdray::tool::print_json(summary);
   } else if (!batch.quiet) {
     std::printf("%s: %zu frames, %zu rendered, %zu skipped, %zu failed in %.2f s (load %.3f s)\n",

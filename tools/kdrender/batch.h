@@ -23,7 +23,7 @@ struct BatchOptions {
 // checked before anything renders (UsageError names FILE:LINE); a frame that fails is reported
 // and the batch goes on. Returns the exit code: 0 when every frame was rendered or skipped, 1
 // when any failed (they are listed). The host's frames trace the tree copied out of its file
-// when their rays together repay the copy.
+// when the rays of the first that renders and of those after it repay the copy.
 int run_batch(const kdray::Scene& scene, kdray::KdTree& tree, const FrameOptions& defaults,
               const BatchOptions& batch, double load_seconds);
 

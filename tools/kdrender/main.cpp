@@ -10,7 +10,6 @@
 #include "batch.h"
 #include "frame_options.h"
 #include "render_frame.h"
-#include "tree_placement.h"
 
 #include <kdray/clock.h>
 #include <kdray/image_io.h>
@@ -21,6 +20,7 @@
 #include <device_option.h>
 #include <progress.h>
 #include <tool_main.h>
+#include <tree_memory.h>
 
 #include <filesystem>
 #include <optional>
@@ -131,7 +131,8 @@ int render(const Options& o) {
 
   frame.settings = kdray::resolve_view(scene, frame.settings);
   kdrender::warn_if_default_light(scene, o.scene_path, frame);
-  const double copy_seconds = kdrender::place_tree_for_host(tree, kdrender::host_rays_of(frame), frame.device.threads);
+  const double copy_seconds =
+      kdray::tool::copy_tree_if_repaid(tree, kdrender::host_rays_of(frame), frame.device.threads);
   kdray::tool::ProgressBar progress("kdrender", !o.flags.quiet);
   kdrender::FrameResult result = kdrender::render_frame(scene, tree, frame, [&](uint32_t done, uint32_t total) {
     progress.update(double(done) / total, std::to_string(done) + "/" + std::to_string(total) + " spp");
@@ -140,7 +141,7 @@ int render(const Options& o) {
   if (o.flags.json) {
     nlohmann::json report = kdrender::frame_json(frame, result);
     report["load_seconds"] = load_seconds;
-    kdrender::add_tree_memory(report, copy_seconds);
+    kdray::tool::add_tree_memory(report, copy_seconds);
     kdray::tool::print_json(report);
   } else if (!o.flags.quiet) {
     kdrender::print_frame_summary(frame, result);

@@ -32,6 +32,14 @@ FrameResult render_frame(const kdray::Scene& scene, const kdray::KdTree& tree, c
   return result;
 }
 
+uint64_t host_rays_of(const Frame& frame) {
+  if (frame.device.device != kdray::kHostDevice) return 0;
+  const kdray::RenderSettings& s = frame.settings;
+  const uint64_t width = s.width ? s.width : kdray::RenderSettings::kDefaultSize;
+  const uint64_t height = s.height ? s.height : kdray::RenderSettings::kDefaultSize;
+  return width * height * s.spp * (uint64_t{s.max_bounces} + 1);
+}
+
 nlohmann::json frame_json(const Frame& frame, const FrameResult& result) {
   const kdray::Film& film = result.film;
   const kdray::RenderStats& stats = result.stats;

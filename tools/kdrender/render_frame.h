@@ -21,6 +21,10 @@ struct FrameResult {
 FrameResult render_frame(const kdray::Scene& scene, const kdray::KdTree& tree, const Frame& frame,
                          const kdray::RenderProgress& progress = {});
 
+// The rays a frame traces at most on the host (--device host: pixels x samples x (bounces + 1),
+// a side left to the camera counted at the default size), 0 on an OpenCL device.
+uint64_t host_rays_of(const Frame& frame);
+
 // The frame's statistics (--json): output, device, sizes, samples, timings, rates.
 nlohmann::json frame_json(const Frame& frame, const FrameResult& result);
 

@@ -1,5 +1,7 @@
 #include "trace_report.h"
 
+#include "tree_memory.h"
+
 #include <cstdio>
 
 namespace kdtrace {
@@ -35,9 +37,7 @@ nlohmann::json trace_json(const Options& o, bool host, size_t ray_count, const T
     summary["threads"] = o.traversal.threads;
     summary["variant"] =
         run.lanes ? "cpu-16-rays-per-thread-in-avx2-lanes+prefetch" : "cpu-one-ray-per-thread+prefetch";
-    // Where the tree was traced: copied out of its file first (copy_tree_for_rays), or in place.
-    summary["tree_memory"] = run.tree_copy_seconds >= 0 ? "copied" : "file mapping";
-    if (run.tree_copy_seconds >= 0) summary["tree_copy_seconds"] = run.tree_copy_seconds;
+    kdray::tool::add_tree_memory(summary, run.tree_copy_seconds);
   } else {
     summary["device"] = run.opencl.device;
     summary["build_seconds"] = run.opencl.build_seconds;

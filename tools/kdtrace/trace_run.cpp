@@ -4,6 +4,7 @@
 #include <kdray/ray_sets.h>
 
 #include "process_stats.h"
+#include "tree_memory.h"
 
 
 namespace kdtrace {
@@ -25,11 +26,7 @@ std::vector<RayRecord> rays_to_trace(const Options& o, const kdray::Scene* scene
 TraceRun trace_on(bool host, kdray::KdTree& tree, const std::vector<RayRecord>& rays,
                   const kdray::TraceOptions& options, kdray::DeviceSelection opencl_device) {
   TraceRun run;
-  if (host) {
-    const auto copy_start = kdray::Clock::now();
-    if (kdray::copy_tree_for_rays(tree, rays.size(), options.threads))
-      run.tree_copy_seconds = kdray::seconds_since(copy_start);
-  }
+  if (host) run.tree_copy_seconds = kdray::tool::copy_tree_if_repaid(tree, rays.size(), options.threads);
   const double cpu_start = kdray::tool::cpu_seconds();
   const auto start = kdray::Clock::now();
   if (host) {

@@ -86,96 +86,141 @@ constexpr uint64_t kRunCounts[4] = {1, 1 | uint64_t{1} << 32, uint64_t{1} << 32,
 
 }  // namespace
 
+namespace {
+
+// The two halves of the running counts (kRunCounts).
+uint64_t ends_of(uint64_t counts) { return counts & 0xffffffffu; }
+uint64_t starts_of(uint64_t counts) { return counts >> 32; }
+
+// The first pass of a sweep over events [begin, end) of the `count` sorted events of an axis.
+// Which event ends a run of equal positions is unpredictable, so the runs are found without a
+// branch on it: each event writes the running counts and its index at the slot of the run in
+// progress, and the slot moves on where the position changes. Events of one position come ends
+// first, then planar, then starts (the event order), and the running counts are one sum without
+// a branch on the type. Slot 0 holds the last run completed before `begin` (none before the
+// first run: counts 0, ending before event 0). Returns the slots used, slot 0 included: the
+// runs completed in the range, and, unless the range ends the axis, the run in progress.
+size_t find_runs(const Event* events, size_t begin, size_t end, size_t count, uint64_t& counts,
+                 uint64_t* run_counts, uint32_t* run_last) {
+  size_t runs = 1;
+  auto add = [&](size_t i) {
+    counts += kRunCounts[events[i].type()];
+    run_counts[runs] = counts;
+    run_last[runs] = static_cast<uint32_t>(i);
+  };
+  const size_t paired_end = std::min(end, count - 1);
+  for (size_t i = begin; i < paired_end; ++i) {
+    add(i);
+    // Sorted, so a different position is a greater one; -0 and +0 are one run.
+    runs += events[i + 1].position > events[i].position;
+  }
+  if (end == count) {
+    add(count - 1);
+    ++runs;
+  }
+  return runs;
+}
+
+// The second pass: costs runs [1, runs) of those find_runs left (slot 0 is never costed), the
+// run in slot `last_run` the axis's last (0: none of them), `first_run` until the axis's first
+// has been costed.
+void cost_runs(const Event* events, const uint64_t* run_counts, const uint32_t* run_last, size_t runs,
+               size_t last_run, bool& first_run, const SplitAreas& areas, int axis, uint64_t triangles,
+               const CostModel& cost, SplitChoice& best_here) {
+  constexpr size_t kRunGroup = 4;
+  for (size_t group = 1; group < runs; group += kRunGroup) {
+    const size_t group_end = std::min(runs, group + kRunGroup);
+    // A group of runs between the first and the last cannot hold a cheaper split when a
+    // floor of their costs is no lower than the best: the cost with the group's fewest
+    // triangles below (its first run's) and above (its last run's), its first run's area
+    // below and its last run's above. Every run's cost is computed by the same operations
+    // from values at least as large, all of them non-negative, and rounding is monotone, so
+    // the floor is at most each run's computed cost: skipping the group changes no choice.
+    // (So where the groups begin does not matter either: sweep_axis and AxisRuns group alike
+    // or not, and choose the same.)
+    const bool holds_end_run = (first_run && group == 1) || (last_run >= group && last_run < group_end);
+    if (!holds_end_run) {
+      const size_t last_in_group = group_end - 1;
+      const float first_position = events[uint32_t{run_last[group - 1] + 1}].position;
+      const float last_position = events[uint32_t{run_last[last_in_group - 1] + 1}].position;
+      const uint64_t fewest_left = starts_of(run_counts[group - 1]);
+      const uint64_t fewest_right = triangles - ends_of(run_counts[last_in_group]);
+      const double floor = cost.split_cost_both_sides(areas.below_inside(first_position),
+                                                      areas.above_inside(last_position), fewest_left, fewest_right);
+      if (floor >= best_here.cost) continue;
+    }
+    for (size_t r = group; r < group_end; ++r) {
+      const uint64_t through = run_counts[r], before = run_counts[r - 1];
+      const size_t run_start = uint32_t{run_last[r - 1] + 1};  // slot 0 of the first chunk: 0
+      const float position = events[run_start].position;  // the first event's: -0 or +0
+      const uint64_t n_left = starts_of(before), n_right = triangles - ends_of(through);
+      // Each event counts once in ends + starts, a planar one twice.
+      const uint64_t planar = (ends_of(through) + starts_of(through) - (uint64_t{run_last[r]} + 1)) -
+                              (ends_of(before) + starts_of(before) - run_start);
+      if (first_run | (r == last_run) | (planar != 0)) {
+        // The first and the last run, where a side may be empty and the plane may be the
+        // voxel's face, and runs with planar triangles, tried on both sides.
+        consider_split(cost, areas, axis, position, n_left, n_right, planar, best_here);
+        first_run = false;
+      } else {
+        // A run between the first and the last lies strictly inside the voxel (positions are
+        // sorted and within it), with a triangle on each side: the first run holds a start or
+        // a planar event, the last an end or a planar one. So its costing needs neither the
+        // voxel-face case of the areas nor the empty bonus: consider_split's arithmetic
+        // without its branches.
+        const double split_cost =
+            cost.split_cost_both_sides(areas.below_inside(position), areas.above_inside(position), n_left, n_right);
+        if (split_cost < best_here.cost) best_here = SplitChoice{split_cost, axis, position, true, n_left, n_right};
+      }
+    }
+  }
+}
+
+}  // namespace
+
 void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, uint64_t triangles,
                 const CostModel& cost, SplitChoice& best) {
   const SplitAreas areas(voxel, axis);
   if (!areas.has_area() || count == 0) return;
   // A local copy: `best` might alias the events, which would force reloads.
   SplitChoice best_here = best;
-  // The events are swept a chunk at a time, in two passes. Which event ends a run of equal
-  // positions is unpredictable, so the first pass finds the runs without a branch on it: it
-  // writes the running counts and the event's index at the slot of the run in progress and
-  // moves to the next slot where the position changes. The second pass costs the runs.
-  // Events of one position come ends first, then planar, then starts (the event order), and
-  // the running counts are one sum without a branch on the type. Slot 0 holds the last run
-  // completed before the chunk (none before the first run: counts 0, ending before event 0).
+  // The events are swept a chunk at a time, so that the runs of a node of millions of events
+  // take no more than a few KiB.
   constexpr size_t kChunk = 256;
-  constexpr size_t kRunGroup = 4;
   uint64_t run_counts[kChunk + 1];  // counts through the run's last event
-  size_t run_last[kChunk + 1];      // the index of the run's last event
+  uint32_t run_last[kChunk + 1];    // the index of the run's last event
   run_counts[0] = 0;
-  run_last[0] = SIZE_MAX;  // the first run starts at 0
+  run_last[0] = UINT32_MAX;  // the first run starts at 0
   uint64_t counts = 0;
   bool first_run = true;
-  auto ends = [](uint64_t c) { return c & 0xffffffffu; };
-  auto starts = [](uint64_t c) { return c >> 32; };
   for (size_t begin = 0; begin < count; begin += kChunk) {
     const size_t end = std::min(count, begin + kChunk);
-    const bool last_chunk = end == count;
-    size_t runs = 1;
-    auto add = [&](size_t i) {
-      counts += kRunCounts[events[i].type()];
-      run_counts[runs] = counts;
-      run_last[runs] = i;
-    };
-    const size_t paired_end = std::min(end, count - 1);
-    for (size_t i = begin; i < paired_end; ++i) {
-      add(i);
-      // Sorted, so a different position is a greater one; -0 and +0 are one run.
-      runs += events[i + 1].position > events[i].position;
-    }
-    if (last_chunk) {
-      add(count - 1);
-      ++runs;
-    }
-    const size_t last_run = last_chunk ? runs - 1 : 0;  // slot 0 is never costed
-    for (size_t group = 1; group < runs; group += kRunGroup) {
-      const size_t group_end = std::min(runs, group + kRunGroup);
-      // A group of runs between the first and the last cannot hold a cheaper split when a
-      // floor of their costs is no lower than the best: the cost with the group's fewest
-      // triangles below (its first run's) and above (its last run's), its first run's area
-      // below and its last run's above. Every run's cost is computed by the same operations
-      // from values at least as large, all of them non-negative, and rounding is monotone, so
-      // the floor is at most each run's computed cost: skipping the group changes no choice.
-      const bool holds_end_run = (first_run && group == 1) || (last_run >= group && last_run < group_end);
-      if (!holds_end_run) {
-        const size_t last_in_group = group_end - 1;
-        const float first_position = events[run_last[group - 1] + 1].position;
-        const float last_position = events[run_last[last_in_group - 1] + 1].position;
-        const uint64_t fewest_left = starts(run_counts[group - 1]);
-        const uint64_t fewest_right = triangles - ends(run_counts[last_in_group]);
-        const double floor = cost.split_cost_both_sides(areas.below_inside(first_position),
-                                                        areas.above_inside(last_position), fewest_left, fewest_right);
-        if (floor >= best_here.cost) continue;
-      }
-      for (size_t r = group; r < group_end; ++r) {
-        const uint64_t through = run_counts[r], before = run_counts[r - 1];
-        const size_t run_start = run_last[r - 1] + 1;
-        const float position = events[run_start].position;  // the first event's: -0 or +0
-        const uint64_t n_left = starts(before), n_right = triangles - ends(through);
-        // Each event counts once in ends + starts, a planar one twice.
-        const uint64_t planar = (ends(through) + starts(through) - (run_last[r] + 1)) -
-                                (ends(before) + starts(before) - run_start);
-        if (first_run | (r == last_run) | (planar != 0)) {
-          // The first and the last run, where a side may be empty and the plane may be the
-          // voxel's face, and runs with planar triangles, tried on both sides.
-          consider_split(cost, areas, axis, position, n_left, n_right, planar, best_here);
-          first_run = false;
-        } else {
-          // A run between the first and the last lies strictly inside the voxel (positions are
-          // sorted and within it), with a triangle on each side: the first run holds a start or
-          // a planar event, the last an end or a planar one. So its costing needs neither the
-          // voxel-face case of the areas nor the empty bonus: consider_split's arithmetic
-          // without its branches.
-          const double split_cost =
-              cost.split_cost_both_sides(areas.below_inside(position), areas.above_inside(position), n_left, n_right);
-          if (split_cost < best_here.cost) best_here = SplitChoice{split_cost, axis, position, true, n_left, n_right};
-        }
-      }
-    }
+    const size_t runs = find_runs(events, begin, end, count, counts, run_counts, run_last);
+    cost_runs(events, run_counts, run_last, runs, end == count ? runs - 1 : 0, first_run, areas, axis, triangles,
+              cost, best_here);
     run_counts[0] = run_counts[runs - 1];
     run_last[0] = run_last[runs - 1];
   }
+  best = best_here;
+}
+
+void AxisRuns::find(const Event* events, size_t count) {
+  events_ = events;
+  count_ = count;
+  runs_ = 0;
+  if (count == 0) return;
+  run_counts_[0] = 0;
+  run_last_[0] = UINT32_MAX;
+  uint64_t counts = 0;
+  runs_ = find_runs(events, 0, count, count, counts, run_counts_, run_last_);
+}
+
+void AxisRuns::cost(int axis, const Box3& voxel, uint64_t triangles, const CostModel& cost, SplitChoice& best) const {
+  const SplitAreas areas(voxel, axis);
+  if (!areas.has_area() || count_ == 0) return;
+  SplitChoice best_here = best;
+  bool first_run = true;
+  cost_runs(events_, run_counts_, run_last_, runs_, runs_ - 1, first_run, areas, axis, triangles, cost, best_here);
   best = best_here;
 }
 

@@ -286,6 +286,12 @@ struct Subtree {
   TraversalArray<uint32_t> leaf_triangles;
 
   void add_leaf(const uint32_t* triangles, size_t count);
+  // Adds an inner node with one empty child; the other, on `side` (0 below, 1 above), is the
+  // subtree added after it (which may begin with more such nodes). Returns the node's index, for
+  // finish_one_sided once that subtree is added; nodes added so are finished latest first.
+  // The same nodes as add_inner's with one build function empty.
+  size_t add_one_sided(int axis, float position) { return add_inner_node(axis, position); }
+  void finish_one_sided(size_t inner, int side) { finish_inner_node(inner, side == 0 ? nodes.size() : inner + 1); }
   // Adds an inner node, then the near child's subtree (build_near() appends it) and the far
   // child's (build_far()), recording where the far one starts and which of them are empty.
   template <typename BuildNear, typename BuildFar>
@@ -322,6 +328,28 @@ std::array<Node, 2>& children_at_depth(uint32_t depth) {
 // (bench/LOG.md, "Tree build, fifth pass"), and 256 shorter than 128 once the sweep found its
 // runs without branches ("Tree build, sixth pass").
 constexpr size_t kSmallNodeTriangles = 256;
+
+// The sweep's two passes over the events of one axis of a small node (build_small.cpp), kept
+// apart: find() finds the runs of equal positions and the counts through each, and cost()
+// costs them for a voxel as sweep_axis does. A node that becomes its own child (become_child)
+// keeps its events, so the runs found once are costed again for each voxel it shrinks to.
+class AxisRuns {
+ public:
+  // At most this many events: two per triangle of a small node.
+  static constexpr size_t kMaxEvents = 2 * kSmallNodeTriangles;
+
+  // Finds the runs of `count` (at most kMaxEvents) sorted events, which must outlive this.
+  void find(const Event* events, size_t count);
+  // What sweep_axis(events, count, axis, voxel, triangles, cost, best) does.
+  void cost(int axis, const Box3& voxel, uint64_t triangles, const CostModel& cost, SplitChoice& best) const;
+
+ private:
+  const Event* events_ = nullptr;
+  size_t count_ = 0;
+  size_t runs_ = 0;  // slots in use, slot 0 included
+  uint64_t run_counts_[kMaxEvents + 1];
+  uint32_t run_last_[kMaxEvents + 1];
+};
 
 struct SmallBuildParameters {
   CostModel cost;

@@ -12,7 +12,7 @@
 namespace kdray::detail {
 namespace {
 
-constexpr size_t kMaxEvents = 2 * kSmallNodeTriangles;
+constexpr size_t kMaxEvents = AxisRuns::kMaxEvents;  // two per triangle
 
 struct SmallNode {
   Box3 voxel;
@@ -60,32 +60,50 @@ class SmallBuilder {
   // `node` is the parent's room for it, and is changed into its own child where a split sends
   // it whole to one side.
   void build(SmallNode& node, Subtree& out) const {
-    const SplitChoice split = choose_split(node);
+    OneSidedNodes one_sided;
+    const SplitChoice split = choose_split(node, out, one_sided);
     if (split.axis < 0) {
       out.add_leaf(node.triangles, node.count);
-      return;
+    } else {
+      std::array<SmallNode, 2>& children = children_at_depth<SmallNode>(node.depth + 1);
+      divide(node, split, children[0], children[1]);
+      out.add_inner(split.axis, split.position, [&] { build(children[0], out); }, [&] { build(children[1], out); });
     }
-    const int whole_side = side_taking_all(split, node.count);
-    if (whole_side >= 0) {
-      become_child(node, split, whole_side);
-      out.add_inner(split.axis, split.position, [&] { if (whole_side == 0) build(node, out); },
-                    [&] { if (whole_side == 1) build(node, out); });
-      return;
-    }
-    std::array<SmallNode, 2>& children = children_at_depth<SmallNode>(node.depth + 1);
-    divide(node, split, children[0], children[1]);
-    out.add_inner(split.axis, split.position, [&] { build(children[0], out); }, [&] { build(children[1], out); });
+    for (size_t i = one_sided.count; i-- > 0;) out.finish_one_sided(one_sided.inner[i], one_sided.side[i]);
   }
 
  private:
-  SplitChoice choose_split(const SmallNode& node) const {
-    SplitChoice split;
-    if (node.count == 0 || node.depth >= parameters_.max_depth) return split;
-    // One best over x, y, z in turn: what the per-axis bests combined in axis order give.
-    for (int axis = 0; axis < 3; ++axis)
-      sweep_axis(node.events[axis], node.event_count[axis], axis, node.voxel, node.count, parameters_.cost, split);
-    if (split.axis >= 0 && !parameters_.cost.split_pays(split, node.count, node.voxel)) split.axis = -1;
-    return split;
+  // The nodes a build adds before its split or leaf, each a split that sends all of the node's
+  // triangles to one side (side_taking_all), and the side; at most one a level.
+  struct OneSidedNodes {
+    size_t count = 0;
+    size_t inner[BuildSettings::kMaxDepthLimit + 1];
+    int side[BuildSettings::kMaxDepthLimit + 1];
+  };
+
+  // The split of `node` that divides its triangles between two children, or axis -1 for a
+  // leaf. A split that sends them all to one side is taken on the way (added to `out` and
+  // `one_sided`, the node made that child), and the node's runs, found once, are costed again
+  // for the smaller voxel. Not inlined: its runs (24 KB) would then be on the stack once per
+  // level of the recursion of build().
+  [[gnu::noinline]] SplitChoice choose_split(SmallNode& node, Subtree& out, OneSidedNodes& one_sided) const {
+    if (node.count == 0 || node.depth >= parameters_.max_depth) return SplitChoice{};
+    AxisRuns runs[3];
+    for (int axis = 0; axis < 3; ++axis) runs[axis].find(node.events[axis], node.event_count[axis]);
+    for (;;) {
+      // One best over x, y, z in turn: what the per-axis bests combined in axis order give.
+      SplitChoice split;
+      for (int axis = 0; axis < 3; ++axis) runs[axis].cost(axis, node.voxel, node.count, parameters_.cost, split);
+      if (split.axis >= 0 && !parameters_.cost.split_pays(split, node.count, node.voxel)) split.axis = -1;
+      if (split.axis < 0) return split;
+      const int whole_side = side_taking_all(split, node.count);
+      if (whole_side < 0) return split;
+      one_sided.inner[one_sided.count] = out.add_one_sided(split.axis, split.position);
+      one_sided.side[one_sided.count] = whole_side;
+      ++one_sided.count;
+      become_child(node, split, whole_side);
+      if (node.depth >= parameters_.max_depth) return SplitChoice{};
+    }
   }
 
   // Not inlined into the recursion of build(): its scratch arrays (32 KB) would then be on the

@@ -1,7 +1,8 @@
-// The sweep over one axis's sorted events (sweep_axis) against costing every candidate plane from
-// the triangles' bounds directly: the same cheapest split, cost, side of the planar triangles and
-// counts, bit for bit. The cases include long runs of equal positions at the voxel's faces and
-// inside it, planar triangles, and -0 beside +0 (one run, recorded as its first event's).
+// The sweep over one axis's sorted events (sweep_axis, and a small node's AxisRuns) against
+// costing every candidate plane from the triangles' bounds directly: the same cheapest split,
+// cost, side of the planar triangles and counts, bit for bit. The cases include long runs of
+// equal positions at the voxel's faces and inside it, planar triangles, and -0 beside +0 (one
+// run, recorded as its first event's).
 #include "build_common.h"
 
 #include <gtest/gtest.h>
@@ -66,6 +67,15 @@ std::vector<Box3> boxes(size_t count, uint32_t seed, int axis) {
   return result;
 }
 
+void expect_same_split(const SplitChoice& found, const SplitChoice& expected) {
+  EXPECT_EQ(found.axis, expected.axis);
+  EXPECT_EQ(found.cost, expected.cost);
+  EXPECT_EQ(std::memcmp(&found.position, &expected.position, sizeof(float)), 0);  // -0 is not +0
+  EXPECT_EQ(found.planar_left, expected.planar_left);
+  EXPECT_EQ(found.n_left, expected.n_left);
+  EXPECT_EQ(found.n_right, expected.n_right);
+}
+
 // Sweeps the events of `bounds` on `axis` after `earlier` (the best of the axes swept before)
 // and expects the split that costing every plane finds, bit for bit; returns that split.
 SplitChoice expect_the_split_of_every_plane(const std::vector<Box3>& bounds, int axis, const Box3& voxel,
@@ -76,12 +86,21 @@ SplitChoice expect_the_split_of_every_plane(const std::vector<Box3>& bounds, int
   SplitChoice swept = earlier;
   sweep_axis(events.data(), events.size(), axis, voxel, bounds.size(), cost, swept);
   const SplitChoice expected = every_plane(bounds, events, axis, voxel, cost, earlier);
-  EXPECT_EQ(swept.axis, expected.axis);
-  EXPECT_EQ(swept.cost, expected.cost);
-  EXPECT_EQ(std::memcmp(&swept.position, &expected.position, sizeof(float)), 0);  // -0 is not +0
-  EXPECT_EQ(swept.planar_left, expected.planar_left);
-  EXPECT_EQ(swept.n_left, expected.n_left);
-  EXPECT_EQ(swept.n_right, expected.n_right);
+  expect_same_split(swept, expected);
+  // A small node's runs, found once and costed for the voxel and again for a smaller one (as a
+  // node that becomes its own child does), choose as sweeping that voxel's events does.
+  if (events.size() <= AxisRuns::kMaxEvents) {
+    AxisRuns runs;
+    runs.find(events.data(), events.size());
+    SplitChoice costed = earlier;
+    runs.cost(axis, voxel, bounds.size(), cost, costed);
+    expect_same_split(costed, expected);
+    Box3 smaller = voxel;
+    smaller.max[(axis + 1) % 3] = voxel.min[(axis + 1) % 3] + 0.25f * (voxel.max[(axis + 1) % 3] - voxel.min[(axis + 1) % 3]);
+    SplitChoice costed_smaller = earlier;
+    runs.cost(axis, smaller, bounds.size(), cost, costed_smaller);
+    expect_same_split(costed_smaller, every_plane(bounds, events, axis, smaller, cost, earlier));
+  }
   return expected;
 }
 

@@ -134,19 +134,21 @@ inline void append_events(EventVector& events, const Box3& bounds, int axis, uin
   }
 }
 
-// std::merge of two sorted event runs for operator<, choosing the next event's run by a
-// computed flag rather than an if, as which run it comes from is unpredictable; the flag is
-// operator<, with bitwise operators.
+// std::merge of two sorted event runs for operator<, where the second is the short one (a
+// node's re-clipped events, merged into the many it kept: about 9 against 31 in a small node):
+// the first run's events are copied up to each of the second's in turn, a short loop per event
+// of the second run, rather than choosing each output event's run (bench/LOG.md, "Tree build,
+// eighth pass").
 inline void merge_events(const Event* a, const Event* a_end, const Event* b, const Event* b_end, Event* out) {
-  while (a != a_end && b != b_end) {
-    const bool take_b = (b->position < a->position) |
-                        ((b->position == a->position) & (b->packed < a->packed));
-    *out++ = take_b ? *b : *a;
-    b += take_b;
-    a += !take_b;
+  for (; b != b_end; ++b) {
+    const Event next = *b;
+    // a's events not above `next` (operator<, with bitwise operators) go first.
+    while (a != a_end && !((next.position < a->position) |
+                           ((next.position == a->position) & (next.packed < a->packed))))
+      *out++ = *a++;
+    *out++ = next;
   }
-  out = std::copy(a, a_end, out);
-  std::copy(b, b_end, out);
+  std::copy(a, a_end, out);
 }
 
 struct SplitChoice {

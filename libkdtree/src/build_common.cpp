@@ -84,10 +84,6 @@ namespace {
 // halves do not spill into each other.
 constexpr uint64_t kRunCounts[4] = {1, 1 | uint64_t{1} << 32, uint64_t{1} << 32, 0};
 
-}  // namespace
-
-namespace {
-
 // The two halves of the running counts (kRunCounts).
 uint64_t ends_of(uint64_t counts) { return counts & 0xffffffffu; }
 uint64_t starts_of(uint64_t counts) { return counts >> 32; }
@@ -136,8 +132,8 @@ void cost_runs(const Event* events, const uint64_t* run_counts, const uint32_t* 
     // below and its last run's above. Every run's cost is computed by the same operations
     // from values at least as large, all of them non-negative, and rounding is monotone, so
     // the floor is at most each run's computed cost: skipping the group changes no choice.
-    // (So where the groups begin does not matter either: sweep_axis and AxisRuns group alike
-    // or not, and choose the same.)
+    // Nor, so, does where the groups begin: sweep_axis's chunks and AxisRuns's whole axis
+    // choose alike.
     const bool holds_end_run = (first_run && group == 1) || (last_run >= group && last_run < group_end);
     if (!holds_end_run) {
       const size_t last_in_group = group_end - 1;
@@ -188,7 +184,7 @@ void sweep_axis(const Event* events, size_t count, int axis, const Box3& voxel, 
   // take no more than a few KiB.
   constexpr size_t kChunk = 256;
   uint64_t run_counts[kChunk + 1];  // counts through the run's last event
-  uint32_t run_last[kChunk + 1];    // the index of the run's last event
+  uint32_t run_last[kChunk + 1];    // the index of the run's last event (a node has < 2^31)
   run_counts[0] = 0;
   run_last[0] = UINT32_MAX;  // the first run starts at 0
   uint64_t counts = 0;

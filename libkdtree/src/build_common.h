@@ -135,10 +135,10 @@ inline void append_events(EventVector& events, const Box3& bounds, int axis, uin
 }
 
 // std::merge of two sorted event runs for operator<, where the second is the short one (a
-// node's re-clipped events, merged into the many it kept: about 9 against 31 in a small node):
-// the first run's events are copied up to each of the second's in turn, a short loop per event
-// of the second run, rather than choosing each output event's run (bench/LOG.md, "Tree build,
-// eighth pass").
+// node's re-clipped events, merged into the many more it kept): the first run's events are
+// copied up to each of the second's in turn, a short loop per event of the second run, which
+// measured faster than choosing each output event's run (bench/LOG.md, "Tree build, eighth
+// pass").
 inline void merge_events(const Event* a, const Event* a_end, const Event* b, const Event* b_end, Event* out) {
   for (; b != b_end; ++b) {
     const Event next = *b;

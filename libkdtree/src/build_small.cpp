@@ -84,7 +84,7 @@ class SmallBuilder {
   // The split of `node` that divides its triangles between two children, or axis -1 for a
   // leaf. A split that sends them all to one side is taken on the way (added to `out` and
   // `one_sided`, the node made that child), and the node's runs, found once, are costed again
-  // for the smaller voxel. Not inlined: its runs (24 KB) would then be on the stack once per
+  // for the smaller voxel. Not inlined: its runs (18 KB) would then be on the stack once per
   // level of the recursion of build().
   [[gnu::noinline]] SplitChoice choose_split(SmallNode& node, Subtree& out, OneSidedNodes& one_sided) const {
     if (node.count == 0 || node.depth >= parameters_.max_depth) return SplitChoice{};

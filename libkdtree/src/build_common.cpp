@@ -95,7 +95,8 @@ uint64_t starts_of(uint64_t counts) { return counts >> 32; }
 // first, then planar, then starts (the event order), and the running counts are one sum without
 // a branch on the type. Slot 0 holds the last run completed before `begin` (none before the
 // first run: counts 0, ending before event 0). Returns the slots used, slot 0 included: the
-// runs completed in the range, and, unless the range ends the axis, the run in progress.
+// runs completed in the range, the axis's last among them when the range ends the axis. A run
+// still in progress is left uncounted at the slot returned; the next range makes it again.
 size_t find_runs(const Event* events, size_t begin, size_t end, size_t count, uint64_t& counts,
                  uint64_t* run_counts, uint32_t* run_last) {
   size_t runs = 1;

@@ -134,11 +134,11 @@ inline void append_events(EventVector& events, const Box3& bounds, int axis, uin
   }
 }
 
-// std::merge of two sorted event runs for operator<, where the second is the short one (a
-// node's re-clipped events, merged into the many more it kept): the first run's events are
-// copied up to each of the second's in turn, a short loop per event of the second run, which
-// measured faster than choosing each output event's run (bench/LOG.md, "Tree build, eighth
-// pass").
+// std::merge of two sorted event runs for operator<, ties to the first run: the first run's
+// events are copied up to each of the second's in turn. Right for any lengths, and faster than
+// choosing each output event's run where the second is the short one, as a node's re-clipped
+// events are against those it kept in the small nodes that take most of a build (bench/LOG.md,
+// "Tree build, eighth pass").
 inline void merge_events(const Event* a, const Event* a_end, const Event* b, const Event* b_end, Event* out) {
   for (; b != b_end; ++b) {
     const Event next = *b;

@@ -100,6 +100,13 @@ SplitChoice expect_the_split_of_every_plane(const std::vector<Box3>& bounds, int
     SplitChoice costed_smaller = earlier;
     runs.cost(axis, smaller, bounds.size(), cost, costed_smaller);
     expect_same_split(costed_smaller, every_plane(bounds, events, axis, smaller, cost, earlier));
+    // And shrunk along the axis to its first event, as a split that cuts off the empty space
+    // below does: a face of the voxel on the first run (a child area of exactly 1).
+    Box3 cut = voxel;
+    cut.min[axis] = events.front().position;
+    SplitChoice costed_cut = earlier;
+    runs.cost(axis, cut, bounds.size(), cost, costed_cut);
+    expect_same_split(costed_cut, every_plane(bounds, events, axis, cut, cost, earlier));
   }
   return expected;
 }

@@ -95,8 +95,9 @@ SplitChoice expect_the_split_of_every_plane(const std::vector<Box3>& bounds, int
     SplitChoice costed = earlier;
     runs.cost(axis, voxel, bounds.size(), cost, costed);
     expect_same_split(costed, expected);
+    const int across = (axis + 1) % 3;
     Box3 smaller = voxel;
-    smaller.max[(axis + 1) % 3] = voxel.min[(axis + 1) % 3] + 0.25f * (voxel.max[(axis + 1) % 3] - voxel.min[(axis + 1) % 3]);
+    smaller.max[across] = voxel.min[across] + 0.25f * (voxel.max[across] - voxel.min[across]);
     SplitChoice costed_smaller = earlier;
     runs.cost(axis, smaller, bounds.size(), cost, costed_smaller);
     expect_same_split(costed_smaller, every_plane(bounds, events, axis, smaller, cost, earlier));

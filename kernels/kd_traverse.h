@@ -17,8 +17,8 @@
  * Short stack with restart; KD_SHORT_STACK_SIZE (default below) is a compile-time constant.
  *
  * The algorithm: the ray is clipped to the root voxel; at each inner node
- * t_split = (split - o_k) / d_k; the near child holds the origin (or, on the plane, the side the
- * ray moves into: below when d_k <= 0). t_split > t_max or t_split <= 0: near only;
+ * t_split = (split - o_k) / d_k; the near child holds the origin (or, where t_split is 0, the
+ * side the ray moves into: below when d_k <= 0). t_split > t_max or t_split <= 0: near only;
  * t_split < t_min: far only; otherwise the far child goes on the stack with [t_split, t_max]
  * and the near one is visited with [t_min, t_split]. A hit found in a leaf is final once no
  * pending segment starts before it (for ordered segments: the seed's "t <= the leaf's t_max").

@@ -5,12 +5,11 @@
  * - no direction component is 0, so the ray lies in no split plane and one pass is all the
  *   robust traversal makes;
  * - near and far follow the direction's signs, set once per ray: for t_split > 0 they are the
- *   robust traversal's origin sides, and for t_split <= 0 the robust traversal visits the
- *   origin's side, the one the ray enters second. Both far-only conditions (t_split <= 0 and
+ *   robust traversal's origin sides, and for t_split <= 0 the robust traversal visits the side
+ *   the ray moves into (the origin's side, or where t_split is 0, the side beyond the plane),
+ *   the one it enters second. Both far-only conditions (t_split <= 0 and
  *   t_split < t_min * (1 - KD_T_EPSILON)) are one comparison with the bound raised to the
- *   smallest positive float. That needs t_split = 0 only for an origin on the plane, so every
- *   |direction component| is below 2: (split - o) of two different floats is at least 2^-149,
- *   and times a reciprocal above 1/2 it rounds to no less;
+ *   smallest positive float;
  * - the widened bounds t_min * (1 - KD_T_EPSILON) and t_max * (1 + KD_T_EPSILON) are computed
  *   when the segment changes, not at every node;
  * - a plain stack of KD_SHORT_STACK_SIZE entries: until it overflows, the ring never drops an
@@ -24,10 +23,9 @@
 
 #ifndef KD_TRAVERSAL_ROBUST_ONLY
 /* Whether the fast path gives this ray the robust traversal's hits (the header comment): no zero
- * direction component, none of magnitude 2 or more. */
+ * direction component. */
 KD_INLINE int kd_ray_takes_fast_path(const KdRay* ray) {
-  const float x = kd_absf(ray->dir[0]), y = kd_absf(ray->dir[1]), z = kd_absf(ray->dir[2]);
-  return x > 0.0f && y > 0.0f && z > 0.0f && x < 2.0f && y < 2.0f && z < 2.0f;
+  return ray->dir[0] != 0.0f && ray->dir[1] != 0.0f && ray->dir[2] != 0.0f;
 }
 
 /* t_split below this bound, with t_min's slack, is far only; raised to the smallest positive

@@ -5,6 +5,9 @@
  * - The comparisons of t_split with t_min and t_max allow KD_T_EPSILON (relative), so a ray
  *   that meets a triangle exactly on a split plane visits the voxels on both sides even when
  *   t_split and the voxel's t interval round differently (a flat voxel's interval is a point).
+ * - Where t_split is 0, the near child is the side the ray moves into, not the origin's: with an
+ *   origin a few denormals before the plane and |d_k| >= 2 the product underflows to 0 although
+ *   the plane lies ahead, and the origin's side alone would let the ray through the whole tree.
  * - A ray lying in a split plane (d_k = 0, o_k = split) can hit triangles that only touch the
  *   plane from either side, so it is traversed once per side: a first pass goes below at such
  *   nodes and records their axes, then one more pass per combination of sides of the recorded
@@ -31,7 +34,7 @@
 /* The visit step of an inner node, the one used by the ordered traversal and by the point
  * visits: which children the part [t_min, t_max] of the ray touches (KD_VISIT_NEAR,
  * KD_VISIT_FAR or both), whether the near child is the above one (the near child holds the
- * origin, or, with the origin on the plane, the side the ray moves into: below when d_k <= 0;
+ * origin, or, where t_split is 0, the side the ray moves into: below when d_k <= 0;
  * kd_node_child gives its index) and t_split. Splits at or before far_from count as far only
  * (-INFINITY: none does). A ray lying in the split plane touches above when its axis is set in
  * plane_sides, below otherwise, as the near child only, and the axis is added to
@@ -48,7 +51,11 @@ KD_HOT_INLINE int kd_visit_inner(const KdRay* ray, KdNode node, float t_min, flo
     return KD_VISIT_NEAR;
   }
   const float t_split = (split - origin) * ray->inv_dir[axis];
-  const int below_first = origin < split || (origin == split && ray->dir[axis] <= 0.0f);
+  /* Where t_split is 0, the side the ray moves into: the origin lies on the plane, or so near it
+   * that the product rounds to 0 (a direction of magnitude 2 or more, origin and split a few
+   * denormals apart), and then the ray is on that side at every t > 0 a hit can have. The
+   * origin's side there would drop the whole ray when the plane lies (just) ahead. */
+  const int below_first = t_split == 0.0f ? ray->dir[axis] <= 0.0f : origin < split;
   *near_is_above = below_first ? 0u : 1u;
   *t_split_out = t_split;
   if (t_split > t_max * (1.0f + KD_T_EPSILON) || t_split <= 0.0f) return KD_VISIT_NEAR;

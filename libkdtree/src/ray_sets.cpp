@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace kdray {
 namespace {
@@ -42,6 +43,22 @@ RayRecord aimed_ray(const float origin[3], const float target[3]) {
   return make_ray(origin, normalized(static_cast<double>(target[0]) - origin[0],
                                      static_cast<double>(target[1]) - origin[1],
                                      static_cast<double>(target[2]) - origin[2]));
+}
+
+// From `origin` towards `target`: the direction normalised (tmax +inf) or the difference itself
+// (tmax 1), times `scale`, a power of two, with tmax divided by it.
+RayRecord scaled_ray(const float origin[3], const float target[3], double scale, bool normalise) {
+  Direction d{static_cast<double>(target[0]) - origin[0], static_cast<double>(target[1]) - origin[1],
+              static_cast<double>(target[2]) - origin[2]};
+  if (normalise) d = normalized(d.x, d.y, d.z);
+  return RayRecord{origin[0],
+                   origin[1],
+                   origin[2],
+                   static_cast<float>(d.x * scale),
+                   static_cast<float>(d.y * scale),
+                   static_cast<float>(d.z * scale),
+                   0.0f,
+                   normalise ? INFINITY : static_cast<float>(1.0 / scale)};
 }
 
 // The centre and radius of the sphere around `bounds` (radius 1 for a point).
@@ -165,7 +182,7 @@ std::vector<RayRecord> hard_case_rays(const Scene& scene, const KdTree& tree, si
     float origin[3], target[3], direction[3];
     const int axis = static_cast<int>(random.below(3));
     point_in_box(random, bounds, origin);
-    switch (i % 6) {
+    switch (i % 8) {
       case 0:  // axis-aligned, the other components +0 or -0
         random_axis_direction(axis, direction);
         origin[axis] = static_cast<float>(centre[axis] - direction[axis] * 2.0 * radius);
@@ -200,6 +217,26 @@ std::vector<RayRecord> hard_case_rays(const Scene& scene, const KdTree& tree, si
           continue;
         }
         break;
+      case 6:  // a segment, as a shadow ray is: the direction not normalised, scaled by a power of two
+        if (has_triangles) {
+          point_in_triangle(scene, random, origin);
+          point_in_box(random, bounds, target);
+          rays.push_back(scaled_ray(origin, target, std::ldexp(1.0, static_cast<int>(8 * random.below(4))), false));
+          continue;
+        }
+        break;
+      case 7:  // a long direction from an origin at, near or just off a split plane near 0 on one axis
+        point_in_box(random, bounds, target);
+        if (!inner_nodes.empty() && random.below(2)) {
+          const KdNode node = tree.nodes[inner_nodes[random.below(inner_nodes.size())]];
+          const float split = kd_node_split(node);
+          origin[kd_node_axis(node)] = std::nextafter(split, random.below(2) ? INFINITY : -INFINITY);
+        } else {
+          const float near_zero[] = {0.0f, -0.0f, 1.40129846e-45f, -1.40129846e-45f, 1.17549435e-38f, 7.88860905e-31f};
+          origin[axis] = near_zero[random.below(std::size(near_zero))];
+        }
+        rays.push_back(scaled_ray(origin, target, std::ldexp(1.0, 1 + static_cast<int>(random.below(40))), true));
+        continue;
       case 5:  // axis-aligned through a vertex
         if (has_triangles) {
           vertex_of(scene, random.below(scene.triangle_count()), static_cast<int>(random.below(3)), origin);

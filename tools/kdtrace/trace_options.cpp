@@ -18,7 +18,8 @@ void add_options(CLI::App& app, Options& o) {
       app.add_option("--generate", o.generate,
                      "Trace a generated ray set instead: camera (the scene's first camera, --width x --height), "
                      "random (origins on the bounding sphere aimed into the box, --count) or hard (axis-aligned with "
-                     "+0/-0 components, on and in split planes, through vertices and edges, --count)")
+                     "+0/-0 components, on and in split planes, through vertices and edges, unnormalised "
+                     "segments as shadow rays are, long directions from origins at or just off a plane, --count)")
           ->check(CLI::IsMember({"camera", "random", "hard"}))->group("Rays");
   rays_option->excludes(generate_option);
   app.add_option("--count", o.count, "Rays of a random or hard set")

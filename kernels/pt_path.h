@@ -128,7 +128,8 @@ KD_INLINE void pt_path_shade(PtPath* path, const PtSceneData* scene, KD_GLOBAL c
 #endif
   float2 u = pt_path_sample2(path, params, PT_DIM_BSDF_U);
 #ifdef KD_FEATURE_METALLIC_ROUGHNESS
-  float u_lobe = pt_path_sample(path, params, PT_DIM_LOBE);
+  /* Only the layered material reads it (pt_bsdf_sample); not drawn for the others. */
+  float u_lobe = m.type == PT_METALLIC_ROUGHNESS ? pt_path_sample(path, params, PT_DIM_LOBE) : 0.0f;
 #else
   float u_lobe = 0.0f;
 #endif

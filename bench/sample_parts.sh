@@ -1,23 +1,29 @@
 #!/usr/bin/env bash
 # Where a sample's time goes on the CPU, by part: `perf record` (software clock, no call graphs)
 # of the host build (`kdrender --device host --threads 2`; the C++ build of the same kernel code
-# that PoCL runs, whose symbols perf can name), 256x256, 8 bounces, and each sampled function
-# put in one part by its name. The kernel's helpers are inlined into the functions named, so a
-# part is what its functions do with what they inline:
-#   traversal   kd_traverse and the leaf tests (closest and shadow rays)
-#   light       next-event estimation (pt_next_event_any): the light pick, the spherical
-#               triangle, the environment, the BSDF's evaluation, the MIS weights, their sample
-#               values
-#   shading     pt_path_shade: the hit point, emission with MIS, roulette, the BSDF's sampling,
-#               their sample values
-#   pixels      the pixel loop (HostRender::pass): each path's camera ray and sample values,
-#               the film's accumulation
-#   start       the dynamic loader's symbol lookups at process start
+# that PoCL runs), 256x256, 8 bounces, and each sample put in one part by the source file of its
+# instruction. The kernel's functions are inlined into a few large ones (the fast traversal into
+# the pixel loop), so only the line tables say what code a sample is in: BUILD must be a build
+# with them (`cmake -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS=-g`: the same code, debug
+# information added). The parts, by file:
+#   traversal   kd_geometry.h, kd_traverse*.h, kd_scene_view.h, kd_types.h (closest and shadow
+#               rays: ray setup, the steps, the leaf and triangle tests)
+#   samples     pt_rng.h: the sample values (hashed, scrambled Sobol' points)
+#   light       pt_direct_light.h, pt_lights.h, pt_spherical_triangle.h, pt_environment.h:
+#               next-event estimation
+#   shading     pt_path.h, pt_bsdf.h, pt_material.h, pt_sampling.h, pt_texture*.h: the hit point,
+#               emission with MIS, roulette, the BSDF's evaluation and sampling
+#   math        kd_vector.h, kd_math.h, the C library's maths (float3 operations, sqrt, fmax...),
+#               shared by light and shading
+#   pixels      pt_path_state.h, pt_film.h, render_host.cpp: each path's start and camera ray,
+#               the film's accumulation, the pixel loop
+#   start       the dynamic loader (the image module's OpenImageIO libraries load during the render)
 #   rest        everything else: loading, the kernel, libraries
 # Scenes: the Cornell box sample, the Cornell box with the bunny (bench/cornell_bunny.py), and any
 # asset kdconvert reads, given as arguments (framed by its own camera, or kdrender's default).
 #   [SPP=32] bench/sample_parts.sh [BUILD_DIR] [ASSET...]
-# Needs `perf` (Debian `linux-perf`) with access to software events.
+# Needs `perf` (Debian `linux-perf`) with access to software events, and binutils' addr2line
+# (perf names a sample's source file with it: about a minute a scene).
 set -euo pipefail
 BUILD=$(realpath "${1:-build}")
 shift || true
@@ -27,26 +33,32 @@ WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 export KDRAY_CACHE_DIR=$WORK/kdray-cache
 command -v perf > /dev/null || { echo "sample_parts.sh: error: perf is not installed (Debian: linux-perf)" >&2; exit 1; }
+readelf -S "$KDRENDER" | grep -q debug_line || {
+  echo "sample_parts.sh: error: $KDRENDER has no line tables: configure BUILD with -DCMAKE_CXX_FLAGS=-g" >&2
+  exit 1
+}
 CORNELL_VIEW="--cam-pos 278,273,-800 --cam-target 278,273,0 --fov 39.3077"
 SIZE="--width 256 --height 256 --max-bounces 8 --spp $SPP --device host --threads 2"
 
 # parts PERF_DATA: one line, the percentage of each part, in the order of the header below.
 parts() {
-  perf report -i "$1" --no-children --sort sym --stdio 2> /dev/null | /usr/bin/python3 -c '
+  perf report -i "$1" --no-children --sort srcfile --stdio 2> /dev/null | /usr/bin/python3 -c '
 import re, sys
-parts = [("traversal", r"kd_traverse|kd_intersect|traverse_"),
-         ("light", r"pt_next_event|pt_spherical|pt_light|pt_environment|pt_direct"),
-         ("shading", r"pt_path_shade|pt_bsdf|pt_material|pt_texture|pt_hashed|pt_sample"),
-         ("pixels", r"HostRender::pass|pt_path_begin|pt_path_accumulate|pt_film|pt_camera"),
-         ("start", r"do_lookup_x|_dl_|check_match|strcmp")]
+parts = [("traversal", r"^kd_(geometry|traverse\w*|scene_view|types)\.h$"),
+         ("samples", r"^pt_rng\.h$"),
+         ("light", r"^pt_(direct_light|lights|spherical_triangle|environment)\.h$"),
+         ("shading", r"^pt_(path|bsdf|material|sampling|texture\w*)\.h$"),
+         ("math", r"^(kd_vector\.h|kd_math\.h|cmath|s_\w+\.S|e_\w+\.c|s_\w+\.c)$"),
+         ("pixels", r"^(pt_path_state\.h|pt_film\.h|render_host\.cpp)$"),
+         ("start", r"^(dl-\S+|do-rel\.h|strcmp\S*)$")]
 totals = {name: 0.0 for name, _ in parts}
 totals["rest"] = 0.0
 for line in sys.stdin:
-    m = re.match(r"\s*([0-9.]+)%\s+\[[.k]\]\s+(.*)", line)
+    m = re.match(r"\s*([0-9.]+)%\s+(\S*)\s*$", line)
     if not m: continue
-    share, symbol = float(m.group(1)), m.group(2)
+    share, source = float(m.group(1)), m.group(2)
     for name, pattern in parts:
-        if re.search(pattern, symbol):
+        if re.search(pattern, source):
             totals[name] += share
             break
     else:
@@ -69,7 +81,8 @@ profile() {
 
 machine_line
 echo "kdrender --device host --threads 2, 256x256, 8 bounces, $SPP spp; % of perf's samples (cpu-clock, 2000 Hz)"
-printf "%-16s %7s %9s %9s %9s %9s %9s %9s\n" scene "wall s" traversal light shading pixels start rest
+printf "%-16s %7s %9s %9s %9s %9s %9s %9s %9s %9s\n" scene "wall s" traversal samples light shading math pixels \
+  start rest
 scene_files "$ROOT/samples/cornell-box.obj" cornell
 profile cornell-box "$WORK/cornell.kdscene" "$WORK/cornell.kdtree" $CORNELL_VIEW
 "$ROOT/bench/cornell_bunny.py" "$WORK" > /dev/null

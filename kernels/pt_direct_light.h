@@ -130,9 +130,9 @@ KD_INLINE void pt_shadow_towards(PtPath* path, KD_GLOBAL const PtRenderParams* p
 KD_INLINE void pt_next_event_any(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
                               const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng, float3 wo) {
 #ifdef KD_FEATURE_EMISSION
-  /* With triangle lights alone (select_triangles 1, as in a build with every feature in, the
-   * host's, for a scene without other kinds) every u picks them: not drawn, as nothing else
-   * depends on it (kernels/pt_rng.h: values are counter-based). */
+  /* With triangle lights the only kind (select_triangles 1), every u picks them, so u is not
+   * drawn; no other value depends on it (kernels/pt_rng.h: values are counter-based). A build
+   * with every feature in, the host's, comes here for such scenes. */
   float u = params->select_triangles < 1.0f ? pt_path_sample(path, params, PT_DIM_LIGHT_TYPE) : 0.0f;
   if (u < params->select_triangles) {
     pt_next_event(path, scene, params, m, color, p, n, ng, wo);

@@ -225,7 +225,7 @@ std::vector<RayRecord> hard_case_rays(const Scene& scene, const KdTree& tree, si
           continue;
         }
         break;
-      case 7:  // a long direction from an origin at, near or just off a split plane near 0 on one axis
+      case 7:  // a long direction from an origin one float off a split plane, or at or near 0, on one axis
         point_in_box(random, bounds, target);
         if (!inner_nodes.empty() && random.below(2)) {
           const KdNode node = tree.nodes[inner_nodes[random.below(inner_nodes.size())]];

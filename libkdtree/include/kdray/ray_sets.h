@@ -25,8 +25,8 @@ std::vector<RayRecord> random_rays(const Bounds& bounds, size_t count, uint64_t 
 // origins exactly on split planes of `tree`, rays lying in split planes, rays aimed at
 // vertices, rays aimed at points on edges, axis-aligned rays through vertices, segments from
 // a triangle to a point in the box as shadow rays are (the direction unnormalised and scaled,
-// tmax 1 over the scale), and directions of magnitude 2 to 2^40 from origins at, near or one
-// float off a split plane on one axis.
+// tmax 1 over the scale), and directions of magnitude 2 to 2^40 from origins one float off a
+// split plane, or at or near 0, on one axis.
 std::vector<RayRecord> hard_case_rays(const Scene& scene, const KdTree& tree, size_t count, uint64_t seed);
 
 // Rays from `origin` aimed, in turn, at a vertex, at a point on an edge and at a random

@@ -51,7 +51,7 @@ void count_ray(const kdray::Scene& scene, const kdray::KdTree& tree, const RayRe
       const uint32_t axis = kd_node_axis(current);
       const float split = kd_node_split(current);
       const float t_split = (split - ray.org[axis]) * ray.inv_dir[axis];
-      const bool below_first = ray.org[axis] < split || (ray.org[axis] == split && ray.dir[axis] <= 0.0f);
+      const bool below_first = t_split == 0.0f ? ray.dir[axis] <= 0.0f : ray.org[axis] < split;  // kd_visit_inner's
       auto child = [&](uint32_t above) {
         return kd_node_child_empty(current, above) ? kEmptyChild : kd_node_child(current, node, above);
       };

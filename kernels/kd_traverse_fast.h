@@ -6,8 +6,8 @@
  *   robust traversal makes;
  * - near and far follow the direction's signs, set once per ray: for t_split > 0 they are the
  *   robust traversal's origin sides, and for t_split <= 0 the robust traversal visits the side
- *   the ray moves into (the origin's side, or where t_split is 0, the side beyond the plane),
- *   the one it enters second. Both far-only conditions (t_split <= 0 and
+ *   the ray moves into (the origin's side, or where t_split is 0, the side the direction points
+ *   to), the one it enters second. Both far-only conditions (t_split <= 0 and
  *   t_split < t_min * (1 - KD_T_EPSILON)) are one comparison with the bound raised to the
  *   smallest positive float;
  * - the widened bounds t_min * (1 - KD_T_EPSILON) and t_max * (1 + KD_T_EPSILON) are computed
@@ -29,7 +29,7 @@ KD_INLINE int kd_ray_takes_fast_path(const KdRay* ray) {
 }
 
 /* t_split below this bound, with t_min's slack, is far only; raised to the smallest positive
- * float, the bound also sends t_split <= 0 to the origin's side. */
+ * float, the bound also sends t_split <= 0 to the side the ray moves into. */
 KD_INLINE float kd_fast_far_bound(float t_min) { return kd_maxf(t_min * (1.0f - KD_T_EPSILON), 1.40129846e-45f); }
 
 /* Bit k: the ray runs down axis k, so it meets the node above a split before the one below. */

@@ -5,9 +5,10 @@
  * - The comparisons of t_split with t_min and t_max allow KD_T_EPSILON (relative), so a ray
  *   that meets a triangle exactly on a split plane visits the voxels on both sides even when
  *   t_split and the voxel's t interval round differently (a flat voxel's interval is a point).
- * - Where t_split is 0, the near child is the side the ray moves into, not the origin's: with an
- *   origin a few denormals before the plane and |d_k| >= 2 the product underflows to 0 although
- *   the plane lies ahead, and the origin's side alone would let the ray through the whole tree.
+ * - Where t_split is 0, the near child is the side the ray moves into, not the origin's: where
+ *   (split - o_k) * (1 / d_k) underflows (an origin close to the plane for the size of d_k: a
+ *   denormal apart with |d_k| >= 2, 1e-20 apart with |d_k| = 1e30) the plane may lie ahead, and
+ *   the origin's side alone would let the ray through the whole tree.
  * - A ray lying in a split plane (d_k = 0, o_k = split) can hit triangles that only touch the
  *   plane from either side, so it is traversed once per side: a first pass goes below at such
  *   nodes and records their axes, then one more pass per combination of sides of the recorded
@@ -52,9 +53,9 @@ KD_HOT_INLINE int kd_visit_inner(const KdRay* ray, KdNode node, float t_min, flo
   }
   const float t_split = (split - origin) * ray->inv_dir[axis];
   /* Where t_split is 0, the side the ray moves into: the origin lies on the plane, or so near it
-   * that the product rounds to 0 (a direction of magnitude 2 or more, origin and split a few
-   * denormals apart), and then the ray is on that side at every t > 0 a hit can have. The
-   * origin's side there would drop the whole ray when the plane lies (just) ahead. */
+   * for the size of d that the product rounds to 0 (the header comment), and then the ray is on
+   * that side at every t > 0 a hit can have. The origin's side there would drop the whole ray
+   * when the plane lies (just) ahead. */
   const int below_first = t_split == 0.0f ? ray->dir[axis] <= 0.0f : origin < split;
   *near_is_above = below_first ? 0u : 1u;
   *t_split_out = t_split;

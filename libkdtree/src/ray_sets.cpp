@@ -198,7 +198,7 @@ std::vector<RayRecord> hard_case_rays(const Scene& scene, const KdTree& tree, si
           Direction d = normalized(static_cast<double>(target[0]) - origin[0], static_cast<double>(target[1]) - origin[1],
                                    static_cast<double>(target[2]) - origin[2]);
           RayRecord ray = make_ray(origin, d);
-          if (i % 6 == 2) (&ray.dx)[kd_node_axis(node)] = random.below(2) ? -0.0f : 0.0f;
+          if (i % 8 == 2) (&ray.dx)[kd_node_axis(node)] = random.below(2) ? -0.0f : 0.0f;
           rays.push_back(ray);
           continue;
         }
@@ -209,7 +209,7 @@ std::vector<RayRecord> hard_case_rays(const Scene& scene, const KdTree& tree, si
         if (has_triangles) {
           float sphere[3];
           point_on_sphere(random, centre, radius, sphere);
-          if (i % 6 == 3)
+          if (i % 8 == 3)
             vertex_of(scene, random.below(scene.triangle_count()), static_cast<int>(random.below(3)), target);
           else
             point_on_edge(scene, random, target);

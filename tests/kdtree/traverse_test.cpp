@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -316,26 +317,55 @@ TEST(KdTraverse, RaysFromInsideTheIcosphereNeverEscape) {
 
 // An origin a denormal before a split plane at 0, with a direction of magnitude 2 or more:
 // (split - origin) / d rounds to 0 although the plane lies ahead, and the ray is beyond it at
-// every t a hit can have. The traversal used to take the origin's side alone there and let the
-// ray out of the closed sphere; the fast path and the robust traversal must both go beyond.
+// every t a hit can have. The traversal used to take the origin's side alone there and let rays
+// out of the closed sphere; the fast path and the robust traversal must both go beyond. Each ray
+// starts in the voxel of a node that splits at 0, at the middle of its other two axes, so it
+// meets that node at t = 0 whatever the tree's shape.
 TEST(KdTraverse, OriginsADenormalBeforeASplitPlaneGoBeyondIt) {
   const Scene scene = test::icosphere_scene(3, {0, 0, 0}, 1.0f);
   const KdTree tree = build_kdtree(scene, BuildSettings{});
+  struct Voxel {
+    uint32_t node;
+    float lo[3], hi[3];
+  };
+  std::vector<Voxel> pending{{0, {tree.bounds.min.x, tree.bounds.min.y, tree.bounds.min.z},
+                              {tree.bounds.max.x, tree.bounds.max.y, tree.bounds.max.z}}};
   std::vector<RayRecord> rays;
-  for (const KdNode& node : tree.nodes) {
-    if (kd_node_is_leaf(node) || kd_node_split(node) != 0.0f) continue;
+  std::vector<bool> inside;  // the origin well inside the sphere: the ray must hit it
+  while (!pending.empty()) {
+    const Voxel voxel = pending.back();
+    pending.pop_back();
+    const KdNode node = tree.nodes[voxel.node];
+    if (kd_node_is_leaf(node)) continue;
     const int axis = static_cast<int>(kd_node_axis(node));
+    const float split = kd_node_split(node);
+    if (!kd_node_below_empty(node)) {
+      Voxel below = voxel;
+      below.node = voxel.node + 1;
+      below.hi[axis] = split;
+      pending.push_back(below);
+    }
+    if (!kd_node_above_empty(node)) {
+      Voxel above = voxel;
+      above.node = kd_node_far_child(node);
+      above.lo[axis] = split;
+      pending.push_back(above);
+    }
+    if (split != 0.0f) continue;
     for (const float side : {-1.0f, 1.0f}) {
       for (const float length : {2.0f, 1024.0f, 1e20f}) {
-        // The other components non-zero, for the fast path; the origin 1.4e-45 behind the plane.
-        RayRecord ray{0.1f, -0.2f, 0.05f, 0.01f * length, -0.02f * length, 0.03f * length, 0, INFINITY};
-        (&ray.ox)[axis] = -side * 1.40129846e-45f;
-        (&ray.dx)[axis] = side * length;
-        rays.push_back(ray);
+        float origin[3];
+        for (int k = 0; k < 3; ++k) origin[k] = 0.5f * (voxel.lo[k] + voxel.hi[k]);
+        origin[axis] = -side * 1.40129846e-45f;
+        // The other components non-zero, for the fast path.
+        float direction[3] = {0.01f * length, -0.02f * length, 0.03f * length};
+        direction[axis] = side * length;
+        rays.push_back(RayRecord{origin[0], origin[1], origin[2], direction[0], direction[1], direction[2], 0, INFINITY});
+        inside.push_back(origin[0] * origin[0] + origin[1] * origin[1] + origin[2] * origin[2] < 0.8f);
       }
     }
   }
-  ASSERT_FALSE(rays.empty()) << "the sphere's tree has no split plane at 0";
+  ASSERT_NE(std::count(inside.begin(), inside.end(), true), 0) << "the sphere's tree splits at 0 nowhere inside it";
   const TraceOptions ways[] = {{0, TraversalStack::Short, TraversalPath::FastWhereSafe, true},
                                {0, TraversalStack::Short, TraversalPath::FastWhereSafe, false},
                                {0, TraversalStack::Full, TraversalPath::FastWhereSafe, false},
@@ -344,7 +374,9 @@ TEST(KdTraverse, OriginsADenormalBeforeASplitPlaneGoBeyondIt) {
     std::vector<HitRecord> hits;
     trace_closest(tree, rays, hits, way);
     for (size_t i = 0; i < rays.size(); ++i) {
-      EXPECT_NE(hits[i].triangle, KD_NO_HIT) << "ray " << i << " escaped the sphere";
+      if (inside[i]) {
+        EXPECT_NE(hits[i].triangle, KD_NO_HIT) << "ray " << i << " escaped the sphere";
+      }
       EXPECT_TRUE(same_hit_or_tie(hits[i], test::brute_force_float(scene, rays[i]))) << "ray " << i;
     }
   }

@@ -182,7 +182,8 @@ std::vector<RayRecord> hard_case_rays(const Scene& scene, const KdTree& tree, si
     float origin[3], target[3], direction[3];
     const int axis = static_cast<int>(random.below(3));
     point_in_box(random, bounds, origin);
-    switch (i % 8) {
+    const size_t kind = i % 8;  // the cases below, in turn
+    switch (kind) {
       case 0:  // axis-aligned, the other components +0 or -0
         random_axis_direction(axis, direction);
         origin[axis] = static_cast<float>(centre[axis] - direction[axis] * 2.0 * radius);
@@ -198,7 +199,7 @@ std::vector<RayRecord> hard_case_rays(const Scene& scene, const KdTree& tree, si
           Direction d = normalized(static_cast<double>(target[0]) - origin[0], static_cast<double>(target[1]) - origin[1],
                                    static_cast<double>(target[2]) - origin[2]);
           RayRecord ray = make_ray(origin, d);
-          if (i % 8 == 2) (&ray.dx)[kd_node_axis(node)] = random.below(2) ? -0.0f : 0.0f;
+          if (kind == 2) (&ray.dx)[kd_node_axis(node)] = random.below(2) ? -0.0f : 0.0f;
           rays.push_back(ray);
           continue;
         }
@@ -209,7 +210,7 @@ std::vector<RayRecord> hard_case_rays(const Scene& scene, const KdTree& tree, si
         if (has_triangles) {
           float sphere[3];
           point_on_sphere(random, centre, radius, sphere);
-          if (i % 8 == 3)
+          if (kind == 3)
             vertex_of(scene, random.below(scene.triangle_count()), static_cast<int>(random.below(3)), target);
           else
             point_on_edge(scene, random, target);

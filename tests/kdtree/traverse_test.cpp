@@ -1,5 +1,6 @@
 // CPU traversal against brute force (float and double precision), stack variants, any-hit,
 // and closed meshes that rays from inside must never leave.
+#include "build_common.h"
 #include "test_scenes.h"
 
 #include <kdray/kdtree.h>
@@ -324,38 +325,28 @@ TEST(KdTraverse, RaysFromInsideTheIcosphereNeverEscape) {
 TEST(KdTraverse, OriginsADenormalBeforeASplitPlaneGoBeyondIt) {
   const Scene scene = test::icosphere_scene(3, {0, 0, 0}, 1.0f);
   const KdTree tree = build_kdtree(scene, BuildSettings{});
-  struct Voxel {
+  struct Pending {
     uint32_t node;
-    float lo[3], hi[3];
+    detail::Box3 voxel;
   };
-  std::vector<Voxel> pending{{0, {tree.bounds.min.x, tree.bounds.min.y, tree.bounds.min.z},
-                              {tree.bounds.max.x, tree.bounds.max.y, tree.bounds.max.z}}};
+  std::vector<Pending> pending{{0, detail::box_of(tree.bounds)}};
   std::vector<RayRecord> rays;
   std::vector<bool> inside;  // the origin well inside the sphere: the ray must hit it
   while (!pending.empty()) {
-    const Voxel voxel = pending.back();
+    const Pending item = pending.back();
     pending.pop_back();
-    const KdNode node = tree.nodes[voxel.node];
+    const KdNode node = tree.nodes[item.node];
     if (kd_node_is_leaf(node)) continue;
     const int axis = static_cast<int>(kd_node_axis(node));
     const float split = kd_node_split(node);
-    if (!kd_node_below_empty(node)) {
-      Voxel below = voxel;
-      below.node = voxel.node + 1;
-      below.hi[axis] = split;
-      pending.push_back(below);
-    }
-    if (!kd_node_above_empty(node)) {
-      Voxel above = voxel;
-      above.node = kd_node_far_child(node);
-      above.lo[axis] = split;
-      pending.push_back(above);
-    }
+    if (!kd_node_below_empty(node)) pending.push_back({item.node + 1, detail::below_plane(item.voxel, axis, split)});
+    if (!kd_node_above_empty(node))
+      pending.push_back({kd_node_far_child(node), detail::above_plane(item.voxel, axis, split)});
     if (split != 0.0f) continue;
     for (const float side : {-1.0f, 1.0f}) {
       for (const float length : {2.0f, 1024.0f, 1e20f}) {
         float origin[3];
-        for (int k = 0; k < 3; ++k) origin[k] = 0.5f * (voxel.lo[k] + voxel.hi[k]);
+        for (int k = 0; k < 3; ++k) origin[k] = 0.5f * (item.voxel.min[k] + item.voxel.max[k]);
         origin[axis] = -side * 1.40129846e-45f;
         // The other components non-zero, for the fast path.
         float direction[3] = {0.01f * length, -0.02f * length, 0.03f * length};

@@ -31,11 +31,21 @@ typedef unsigned long ulong; /* 64 bits, as OpenCL's, on the LP64 hosts kdray bu
 using std::copysign;
 using std::fabs;
 using std::floor;
-using std::fmax;
-using std::fmin;
 using std::isfinite;
 using std::rint;
 using std::sqrt;
+
+/* fmax and fmin as glibc computes them (a NaN operand gives the other operand; of two equal
+ * operands, such as 0 and -0, the second), which GCC calls out of line in libm on x86-64:
+ * written here they inline. */
+KD_INLINE float fmax(float a, float b) {
+  const float larger = a > b ? a : b;
+  return b != b ? a : larger;
+}
+KD_INLINE float fmin(float a, float b) {
+  const float smaller = a < b ? a : b;
+  return b != b ? a : smaller;
+}
 
 struct float2 {
   float x, y;
@@ -81,7 +91,7 @@ KD_INLINE float3& operator/=(float3& a, float s) { return a = a / s; }
 KD_INLINE float4 operator+(float4 a, float4 b) { return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w}; }
 KD_INLINE float4 operator*(float s, float4 a) { return {s * a.x, s * a.y, s * a.z, s * a.w}; }
 
-KD_INLINE float clamp(float x, float lo, float hi) { return std::fmin(std::fmax(x, lo), hi); }
+KD_INLINE float clamp(float x, float lo, float hi) { return fmin(fmax(x, lo), hi); }
 KD_INLINE int clamp(int x, int lo, int hi) { return x < lo ? lo : (x > hi ? hi : x); }
 
 KD_INLINE float2 vload2(size_t i, const float* p) { return {p[2 * i], p[2 * i + 1]}; }

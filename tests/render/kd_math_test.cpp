@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 
 namespace {
@@ -115,6 +117,29 @@ TEST(KdMath, VectorFunctions) {
   const float3 m = kd_mix3(a, b, 0.5f);
   EXPECT_EQ(m.y, 1.5f);
   EXPECT_EQ(kd_rsqrt(4.0f), 0.5f);
+}
+
+// The C++ build's own fmax and fmin (kernels/kd_vector.h) give the C library's results: the
+// non-NaN operand of a NaN and a number, and the second of two equal operands (so the sign of a
+// zero follows the argument order).
+TEST(KdMath, FmaxAndFminAreTheCLibrarys) {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const float values[] = {0.0f, -0.0f, 1.0f, -1.0f, 1e-45f, -1e-45f, 3.4028235e38f, inf, -inf, nan, -nan, 0.5f};
+  const auto bits = [](float x) {
+    uint32_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+  };
+  for (float a : values) {
+    for (float b : values) {
+      const float larger = fmax(a, b), smaller = fmin(a, b);
+      const float c_larger = ::fmaxf(a, b), c_smaller = ::fminf(a, b);
+      if (std::isnan(c_larger)) EXPECT_TRUE(std::isnan(larger)) << a << " " << b;
+      else EXPECT_EQ(bits(larger), bits(c_larger)) << a << " " << b;
+      if (std::isnan(c_smaller)) EXPECT_TRUE(std::isnan(smaller)) << a << " " << b;
+      else EXPECT_EQ(bits(smaller), bits(c_smaller)) << a << " " << b;
+    }
+  }
 }
 
 }  // namespace

@@ -15,7 +15,7 @@
 #               emission with MIS, roulette, the BSDF's evaluation and sampling
 #   math        kd_vector.h, kd_math.h, the C library's maths (float3 operations, sqrt, fmax...),
 #               shared by light and shading
-#   pixels      pt_path_state.h, pt_film.h, render_host.cpp: each path's start and camera ray,
+#   pixels      pt_path_state.h, pt_film.h, render_host_pixels.cpp: each path's start and camera ray,
 #               the film's accumulation, the pixel loop
 #   start       the dynamic loader (the image module's OpenImageIO libraries load during the render)
 #   rest        everything else: loading, the kernel, libraries
@@ -49,7 +49,7 @@ parts = [("traversal", r"^kd_(geometry|traverse\w*|scene_view|types)\.h$"),
          ("light", r"^pt_(direct_light|lights|spherical_triangle|environment)\.h$"),
          ("shading", r"^pt_(path|bsdf|material|sampling|texture\w*)\.h$"),
          ("math", r"^(kd_vector\.h|kd_math\.h|cmath|s_\w+\.S|e_\w+\.c|s_\w+\.c)$"),
-         ("pixels", r"^(pt_path_state\.h|pt_film\.h|render_host\.cpp)$"),
+         ("pixels", r"^(pt_path_state\.h|pt_film\.h|render_host_pixels\.cpp)$"),
          ("start", r"^(dl-\S+|do-rel\.h|strcmp\S*)$")]
 totals = {name: 0.0 for name, _ in parts}
 totals["rest"] = 0.0

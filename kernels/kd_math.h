@@ -1,6 +1,6 @@
 /* Vector and trigonometric functions of the device code, written out once for both languages.
  *
- * The path tracer's C++ build (librender/src/render_host.cpp) must give the kernel's bits
+ * The path tracer's C++ build (librender/src/render_host_pixels.cpp) must give the kernel's bits
  * (tests/render/cpu_integrator.h).
  * OpenCL's dot, length, normalize, mix and rsqrt may sum in another order or approximate, and
  * each platform's sin, cos, acos and atan2 differ in their last bits; the versions here use only

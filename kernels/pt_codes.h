@@ -46,7 +46,7 @@ KD_STATIC_ASSERT(PT_RADIANCE_CHANNELS + PT_AOV_ALBEDO_CHANNELS + PT_AOV_NORMAL_C
 /* Scene features: bits of PtRenderParams::features, and the KD_FEATURE_* defines of the same names
  * (librender's kernel_feature_bits picks them). An OpenCL program is built with the defines of its
  * scene's features only, so what a scene lacks is compiled out. The C++ build
- * (librender/src/render_host.cpp) compiles every feature in and reads these bits where a part
+ * (librender/src/render_host_pixels.cpp) compiles every feature in and reads these bits where a part
  * compiled in would otherwise run without the data it needs (PT_USES: kernels/pt_path.h and the
  * files it includes). */
 #define PT_FEATURE_EMISSION (1u << 0)

@@ -3,7 +3,7 @@
  * the film. The path's state is in kernels/pt_path_state.h, direct lighting in
  * kernels/pt_direct_light.h, film accumulation in kernels/pt_film.h. The megakernel runs
  * pt_render_pixel per work-item; the wavefront form runs each step as its own kernel over a
- * buffer of paths. Compiles as C++ too: librender/src/render_host.cpp runs it on the CPU
+ * buffer of paths. Compiles as C++ too: librender/src/render_host_pixels.cpp runs it on the CPU
  * (kdrender --device host), and tests/render/cpu_integrator.h checks that against the kernel bit
  * for bit. */
 #ifndef PT_PATH_H
@@ -168,7 +168,7 @@ KD_INLINE uint pt_render_sample(const PtSceneData* scene, KD_GLOBAL const PtRend
 
 /* Traces samples sample_offset .. sample_offset + sample_count - 1 of `pixel` and adds their sums
  * to the pixel's film channels; returns the number of rays traced. The per-pixel work of the
- * megakernel and of the host renderer (librender/src/render_host.cpp). */
+ * megakernel and of the host renderer (librender/src/render_host_pixels.cpp). */
 KD_INLINE ulong pt_render_pixel(const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params, uint pixel,
                              KD_GLOBAL long* film, uint* nonfinite) {
   long sums[PT_MAX_FILM_CHANNELS];

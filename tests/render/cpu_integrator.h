@@ -1,5 +1,5 @@
 // The path tracer's C++ build against its OpenCL kernel: librender's host renderer (kernels/
-// pt_path.h compiled once with every feature in, librender/src/render_host.cpp) and the PoCL
+// pt_path.h compiled with every feature in, librender/src/render_host_pixels.cpp) and the PoCL
 // kernel built for the scene's own features render the same film, every pixel's fixed-point sums
 // bit for bit. Each test names the features its scene's kernel is built with, so together they
 // show that a feature compiled in but unused changes no bit. The host renderer and the kernels
@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <set>
 #include <sstream>
 #include <string>
@@ -32,32 +33,42 @@ inline std::set<std::string> option_defines(const std::string& options) {
   return defines;
 }
 
-// Renders the scene on PoCL and on the host (with `threads`, 0: all cores) and expects the same
-// film sums, and the kernel built with exactly the -D options `kernel_defines`. Returns the number
-// of pixels whose radiance is not zero (so a caller can check the scene is lit).
+// Renders the scene on PoCL and on the host (with `threads`, 0: all cores), in each of the host's
+// builds of the path tracer (the one for this CPU, then the generic one that KDRAY_HOST_ISA
+// names), and expects the same film sums, and the kernel built with exactly the -D options
+// `kernel_defines`. Returns the number of pixels whose radiance is not zero (so a caller can
+// check the scene is lit).
 inline size_t expect_host_matches_kernel(Scene& scene, const RenderSettings& settings,
                                          const std::set<std::string>& kernel_defines, unsigned threads = 0) {
   const KdTree tree = tree_for(scene);
   EXPECT_EQ(option_defines(kernel_feature_options(scene, settings, DeviceSelection{"cpu"})), kernel_defines)
       << "the scene's kernel features";
   const Film film = render(scene, tree, settings, DeviceSelection{"cpu"});
-  DeviceSelection host{kHostDevice};
-  host.threads = threads;
-  RenderStats stats;
-  const Film cpu = render(scene, tree, settings, host, &stats);
-  EXPECT_EQ(stats.device, kHostDevice);
-  EXPECT_EQ(cpu.sums.size(), film.sums.size());
   const size_t channels = film.channels.size();
-  size_t mismatches = 0, lit = 0;
-  for (size_t i = 0; i < std::min(cpu.sums.size(), film.sums.size()); ++i) {
-    if (i % channels == 0 && (film.sums[i] || film.sums[i + 1] || film.sums[i + 2])) ++lit;
-    if (cpu.sums[i] == film.sums[i]) continue;
-    if (++mismatches <= 5) {
-      ADD_FAILURE() << "pixel " << i / channels << " channel " << film.channels[i % channels] << ": C++ "
-                    << cpu.sums[i] << ", kernel " << film.sums[i];
+  size_t lit = 0;
+  for (size_t i = 0; i < film.sums.size(); i += channels) lit += film.sums[i] || film.sums[i + 1] || film.sums[i + 2];
+  for (const char* build : {"", "generic"}) {
+    if (*build) setenv("KDRAY_HOST_ISA", build, 1);
+    DeviceSelection host{kHostDevice};
+    host.threads = threads;
+    RenderStats stats;
+    const Film cpu = render(scene, tree, settings, host, &stats);
+    unsetenv("KDRAY_HOST_ISA");
+    EXPECT_EQ(stats.device, kHostDevice);
+    if (*build) {
+      EXPECT_EQ(stats.build_source, std::string("built in, ") + build);
     }
+    EXPECT_EQ(cpu.sums.size(), film.sums.size());
+    size_t mismatches = 0;
+    for (size_t i = 0; i < std::min(cpu.sums.size(), film.sums.size()); ++i) {
+      if (cpu.sums[i] == film.sums[i]) continue;
+      if (++mismatches <= 5) {
+        ADD_FAILURE() << stats.build_source << ": pixel " << i / channels << " channel " << film.channels[i % channels]
+                      << ": C++ " << cpu.sums[i] << ", kernel " << film.sums[i];
+      }
+    }
+    EXPECT_EQ(mismatches, 0u) << "of " << cpu.sums.size() << " film sums, " << stats.build_source;
   }
-  EXPECT_EQ(mismatches, 0u) << "of " << cpu.sums.size() << " film sums";
   return lit;
 }
 

@@ -1,0 +1,42 @@
+// The host renderer's inner loop, the path tracer of kernels/pt_path.h compiled as C++ for a run
+// of pixels, in two builds: for any CPU of the target (generic), and for x86-64-v3 (AVX2, BMI2, FMA), which the
+// host renderer takes where the CPU has it. The second build has no contraction into FMA either,
+// so both give the kernels' bits; they differ in instructions only (rint and selects in one
+// instruction each, three-operand forms).
+#pragma once
+
+#include "scene_arrays.h"
+
+#include <kernels/pt_types.h>
+
+#include <cstdint>
+
+namespace kdray {
+
+// Renders pixels [begin, end) of the pass `params` names into `film`; returns the rays traced
+// and adds the non-finite values met to *nonfinite.
+using RenderHostPixels = uint64_t (*)(const SceneArrays& arrays, const PtRenderParams& params, uint32_t begin,
+                                      uint32_t end, int64_t* film, uint32_t* nonfinite);
+
+struct HostPixelsBuild {
+  RenderHostPixels render;
+  const char* name;  // "generic" or "x86-64-v3"
+};
+
+// The build for this CPU: x86-64-v3 where the CPU has it, unless the environment variable
+// KDRAY_HOST_ISA=generic asks for the other (to compare the two). Throws kdray::Error for any
+// other value of it.
+HostPixelsBuild host_pixels_build();
+
+namespace host_pixels_generic {
+uint64_t render_pixels(const SceneArrays& arrays, const PtRenderParams& params, uint32_t begin, uint32_t end,
+                       int64_t* film, uint32_t* nonfinite);
+}
+#ifdef KDRAY_HOST_PIXELS_HAVE_X86_64_V3
+namespace host_pixels_x86_64_v3 {
+uint64_t render_pixels(const SceneArrays& arrays, const PtRenderParams& params, uint32_t begin, uint32_t end,
+                       int64_t* film, uint32_t* nonfinite);
+}
+#endif
+
+}  // namespace kdray

@@ -1,4 +1,4 @@
-// The EXR inputs of `kdrender --merge`: OpenImageIO parses the file (Debian's build, not
+// The EXR inputs of `kdrender --merge`: OpenEXR parses the file (Debian's build, not
 // instrumented), kdray checks channels, metadata and sizes before it reads the exact sums.
 #include "fuzz_input.h"
 

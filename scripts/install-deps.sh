@@ -7,7 +7,7 @@ packages=(
   libassimp-dev libtinyobjloader-dev assimp-testmodels
   libcereal-dev libxxhash-dev nlohmann-json3-dev libfmt-dev libcli11-dev libtbb-dev
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo
-  libopenimageio-dev openimageio-tools libimath-dev
+  libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev
   libgtest-dev googletest
   python3-matplotlib python3-numpy bc
   clang libclang-rt-14-dev clang-15 libclc-15

@@ -1,4 +1,4 @@
-// OpenImageIO behind the image codec interface (image_codec.h).
+// OpenImageIO behind the image codec interface (image_codec.h), for every format but EXR.
 #include "image_codec.h"
 
 #include <OpenImageIO/imageio.h>

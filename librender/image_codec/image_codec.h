@@ -1,7 +1,10 @@
-// The entry point of the image codec module: OpenImageIO behind a small interface of plain data,
-// in a shared library that librender loads with dlopen (src/image_codec_loader.cpp), so that
-// only the tools which read or write images load OpenImageIO's some 250 libraries, and kdrender
-// loads them while it renders. Both sides are built together, so C++ types may cross.
+// The image codec interface, of plain data, and the entry point of the image codec module:
+// OpenImageIO behind it, in a shared library that librender loads with dlopen
+// (src/image_codec_loader.cpp), so that only the tools which read or write images other than EXR
+// load OpenImageIO's some 250 libraries, and kdrender loads them while it renders. EXR files go
+// through OpenEXR behind the same interface (src/exr_codec.h), linked into librender: EXR is what
+// kdrender writes for each frame and what kdcompare and kdrender --merge read back, and OpenEXR
+// loads in milliseconds. Both sides are built together, so C++ types may cross.
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Environment maps from image files, through the image codec module (see environment.h).
+// Environment maps from image files, through the image codecs (see environment.h).
 #include "image_codec_loader.h"
 
 #include <kdray/environment.h>

@@ -1,7 +1,10 @@
 #include "image_codec_loader.h"
 
+#include "exr_codec.h"
+
 #include <kdray/error.h>
 #include <kdray/module.h>
+#include <kdray/util.h>
 
 #include <future>
 #include <mutex>
@@ -32,11 +35,17 @@ const std::shared_future<LoadedCodec>& codec_load(std::launch policy) {
   return load;
 }
 
+// By name, as OpenImageIO picks a writer: a file of another name holding EXR is the module's.
+bool handled_by_openexr(const std::string& path) { return lowercase_extension(path) == ".exr"; }
+
 }  // namespace
 
-void start_loading_image_codec() { codec_load(std::launch::async); }
+void start_loading_image_codec(const std::string& path) {
+  if (!handled_by_openexr(path)) codec_load(std::launch::async);
+}
 
 const ImageCodec& image_codec(const std::string& path) {
+  if (handled_by_openexr(path)) return exr_codec();
   const LoadedCodec& loaded = codec_load(std::launch::deferred).get();
   if (loaded.codec == nullptr) throw Error(path, "image files cannot be read or written: " + loaded.problem);
   return *loaded.codec;

@@ -1,4 +1,4 @@
-// Film images through the image codec module (see image_io.h).
+// Film images through the image codecs: OpenEXR for .exr, the module for PNG and JPEG (see image_io.h).
 #include "image_codec_loader.h"
 
 #include <kdray/atomic_file.h>
@@ -51,8 +51,7 @@ void write_exr(const std::string& path, const Film& film) {
       header.channel_types.push_back(PixelType::UInt32);
     }
   }
-  header.attributes = {{"compression", std::string("zip")},
-                       {"kdray:spp", film.sample_count},
+  header.attributes = {{"kdray:spp", film.sample_count},
                        {"kdray:sample_offset", film.sample_offset},
                        {"kdray:seed", film.seed},
                        {"kdray:max_bounces", film.max_bounces},
@@ -334,6 +333,6 @@ Film read_film_exr(const std::string& path) {
   return film;
 }
 
-void preload_image_io() { start_loading_image_codec(); }
+void preload_image_io(const std::string& path) { start_loading_image_codec(path); }
 
 }  // namespace kdray

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 
 namespace fs = std::filesystem;
@@ -160,6 +161,65 @@ TEST_F(ImageCompare, UnreadableFileThrowsNamingIt) {
     EXPECT_NE(std::string(error.what()).find("garbage.exr"), std::string::npos) << error.what();
   }
   EXPECT_THROW(kdray::read_float_image((dir_ / "missing.exr").string()), kdray::Error);
+}
+
+TEST_F(ImageCompare, TruncatedExrThrowsNamingIt) {
+  std::vector<float> pixels;
+  for (int i = 0; i < 64 * 64 * 3; ++i) pixels.push_back(float(i % 97) / 7);
+  write_test_image(dir_ / "whole.exr", 64, 64, {"R", "G", "B"}, pixels);
+  std::ifstream whole(dir_ / "whole.exr", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(whole)), std::istreambuf_iterator<char>());
+  const fs::path truncated = dir_ / "truncated.exr";
+  std::ofstream(truncated, std::ios::binary) << bytes.substr(0, bytes.size() * 2 / 3);
+  try {
+    kdray::read_float_image(truncated.string());
+    FAIL() << "a truncated EXR read";
+  } catch (const kdray::Error& error) {
+    EXPECT_NE(std::string(error.what()).find("truncated.exr"), std::string::npos) << error.what();
+  }
+}
+
+namespace {
+
+// EXR goes through OpenEXR, every other format through OpenImageIO, so an EXR from another program
+// must read as OpenImageIO read it: the same channels in the same order (R, G, B, A first in each
+// layer, X, Y, Z together), the same alpha channel, the same values.
+void expect_read_as_openimageio_reads(const std::string& path) {
+  auto input = OIIO::ImageInput::open(path);
+  ASSERT_TRUE(input) << OIIO::geterror();
+  const OIIO::ImageSpec spec = input->spec();
+  std::vector<float> pixels(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
+  ASSERT_TRUE(input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
+  const kdray::FloatImage image = kdray::read_float_image(path);
+  EXPECT_EQ(image.width, spec.width);
+  EXPECT_EQ(image.height, spec.height);
+  EXPECT_EQ(image.channel_names, spec.channelnames);
+  EXPECT_EQ(image.alpha_channel, spec.alpha_channel);
+  EXPECT_EQ(image.pixels, pixels);
+}
+
+}  // namespace
+
+TEST_F(ImageCompare, HalfFloatLayersReadAsOpenImageIoReadsThem) {
+  const std::vector<std::string> channels = {"Z",         "A",         "B",         "G",         "R",
+                                             "N.Z",       "N.X",       "N.Y",       "diffuse.A", "diffuse.B",
+                                             "diffuse.R", "diffuse.G", "diffuse.Y", "beauty"};
+  std::vector<float> pixels;
+  for (int i = 0; i < 3 * 2 * int(channels.size()); ++i) pixels.push_back(float(i) * 0.25f);  // exact in half
+  const fs::path path = dir_ / "layers.exr";
+  write_test_image(path, 3, 2, channels, pixels, OIIO::TypeDesc::HALF);
+  expect_read_as_openimageio_reads(path.string());
+  const kdray::FloatImage image = kdray::read_float_image(path.string());
+  EXPECT_EQ(std::vector<std::string>(image.channel_names.begin(), image.channel_names.begin() + 4),
+            (std::vector<std::string>{"R", "G", "B", "A"}));
+  EXPECT_EQ(image.alpha_channel, 3);
+  EXPECT_EQ(image.at(5, 0), pixels[5 * channels.size() + 4]);  // R of the last pixel
+}
+
+TEST_F(ImageCompare, AnotherProgramsExrReadsAsOpenImageIoReadsIt) {
+  std::string path;
+  KDRAY_CORPUS_FILE(path, "hdri/studio.exr");  // stored B, G, R, DWAB-compressed
+  expect_read_as_openimageio_reads(path);
 }
 
 TEST_F(ImageCompare, HeatmapIsDarkWhereEqualBrightWhereWrongAndMagentaWhereNaN) {

@@ -10,12 +10,13 @@
 
 namespace kdray::test {
 
-// Writes interleaved float pixels; the file format follows the extension (EXR keeps floats,
-// PNG stores 8 bits).
+// Writes interleaved float pixels; the file format follows the extension (EXR stores `exr_type`,
+// PNG 8 bits).
 inline void write_test_image(const std::filesystem::path& path, int width, int height,
-                             const std::vector<std::string>& channels, const std::vector<float>& pixels) {
+                             const std::vector<std::string>& channels, const std::vector<float>& pixels,
+                             OIIO::TypeDesc exr_type = OIIO::TypeDesc::FLOAT) {
   const bool eight_bit = path.extension() == ".png";
-  OIIO::ImageSpec spec(width, height, int(channels.size()), eight_bit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+  OIIO::ImageSpec spec(width, height, int(channels.size()), eight_bit ? OIIO::TypeDesc::UINT8 : exr_type);
   spec.channelnames = channels;
   for (size_t c = 0; c < channels.size(); ++c) {
     if (channels[c] == "A") spec.alpha_channel = int(c);

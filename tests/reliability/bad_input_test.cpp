@@ -64,6 +64,10 @@ class BadInputTable : public test::SuiteDirTest<BadInputTable> {
       damaged[damaged.size() - 5] ^= 0x5a;
       spit(d / ("damaged-" + std::string(name).substr(5)), damaged);
     }
+    // The same damage under names OpenEXR reads (.exr); the names above go to OpenImageIO.
+    fs::copy_file(d / "truncated-exr", d / "truncated.exr");
+    fs::copy_file(d / "damaged-exr", d / "damaged.exr");
+    spit(d / "text.exr", slurp(d / "text.txt"));
     spit(d / "truncated.rays", slurp(d / "good.rays").substr(0, 45));
     spit(d / "truncated.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
                               "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n");
@@ -103,6 +107,10 @@ std::vector<BadInput> table() {
       {"kdrender/damaged tree", {scene, "{DIR}/damaged-kdtree", "-o", out + ".png"}, 1, "damaged-kdtree"},
       {"kdrender/damaged merge input", {"--merge", "{DIR}/good.exr", "{DIR}/damaged-exr", "-o", out + ".exr"}, 1, "damaged-exr"},
       {"kdrender/text merge input", {"--merge", "{DIR}/good.exr", "{DIR}/text.txt", "-o", out + ".exr"}, 1, "text.txt"},
+      {"kdrender/damaged .exr merge input", {"--merge", "{DIR}/good.exr", "{DIR}/damaged.exr", "-o", out + ".exr"}, 1,
+       "damaged.exr"},
+      {"kdrender/truncated .exr merge input", {"--merge", "{DIR}/truncated.exr", "{DIR}/good.exr", "-o", out + ".exr"},
+       1, "truncated.exr"},
       {"kdrender/zero spp", {scene, tree, "-o", out + ".png", "--spp", "0"}, 2, "spp"},
       {"kdrender/unknown device", {scene, tree, "-o", out + ".png", "--device", "tpu"}, 2, "'tpu' is not host"},
       {"kdrender/threads with OpenCL", {scene, tree, "-o", out + ".png", "--device", "cpu", "--threads", "2"}, 2,
@@ -128,6 +136,9 @@ std::vector<BadInput> table() {
       {"kdcompare/missing test image", {"{DIR}/missing.exr", "{DIR}/good.exr"}, 1, "missing.exr"},
       {"kdcompare/wrong kind", {"{DIR}/text.txt", "{DIR}/good.exr"}, 1, "text.txt"},
       {"kdcompare/truncated reference", {"{DIR}/good.exr", "{DIR}/truncated-exr"}, 1, "truncated-exr"},
+      {"kdcompare/truncated .exr reference", {"{DIR}/good.exr", "{DIR}/truncated.exr"}, 1, "truncated.exr"},
+      {"kdcompare/damaged .exr test image", {"{DIR}/damaged.exr", "{DIR}/good.exr"}, 1, "damaged.exr"},
+      {"kdcompare/text named .exr", {"{DIR}/text.exr", "{DIR}/good.exr"}, 1, "text.exr"},
       {"kdcompare/bad threshold", {"{DIR}/good.exr", "{DIR}/good.exr", "--threshold", "relmse=abc"}, 2, "threshold"},
   };
   for (const BadInput& c : bad) {

@@ -19,10 +19,11 @@ double rate(double count, double seconds) { return seconds > 0 ? count / seconds
 FrameResult render_frame(const kdray::Scene& scene, const kdray::KdTree& tree, const Frame& frame,
                          const kdray::RenderProgress& progress) {
   FrameResult result;
-  // The image writer's libraries load while the device renders, from the first finished pass on:
-  // PoCL has loaded its kernel library by then, so neither load waits for the other.
-  auto progress_then_preload = [&progress](uint32_t done, uint32_t total) {
-    kdray::preload_image_io();
+  // For an output OpenImageIO writes (PNG, JPEG; EXR needs none of it), its libraries load while
+  // the device renders, from the first finished pass on: PoCL has loaded its kernel library by
+  // then, so neither load waits for the other.
+  auto progress_then_preload = [&progress, &frame](uint32_t done, uint32_t total) {
+    kdray::preload_image_io(frame.output);
     if (progress) progress(done, total);
   };
   result.film = kdray::render(scene, tree, frame.settings, frame.device, &result.stats, progress_then_preload);

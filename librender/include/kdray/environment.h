@@ -19,7 +19,7 @@ struct Environment {
   float rotate_degrees = 0.0f; // about +Y, counter-clockwise seen from above
 };
 
-// Reads an equirectangular image in any format OpenImageIO reads (EXR, HDR, ...); the first
+// Reads an equirectangular image: EXR, or any format OpenImageIO reads (HDR, ...); the first
 // three channels are RGB (one channel is grey). Throws kdray::Error naming the file.
 Environment load_environment(const std::string& path);
 

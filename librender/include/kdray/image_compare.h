@@ -1,6 +1,6 @@
 // Comparing a rendered image against a reference: error metrics per channel and overall,
-// and a false-colour map of the per-pixel error. Images are read through OpenImageIO, so
-// any format it reads (EXR, HDR, PNG, JPEG, TIFF...) works; values are compared as float,
+// and a false-colour map of the per-pixel error. Images are read through OpenEXR (EXR) and
+// OpenImageIO (any other format it reads: HDR, PNG, JPEG, TIFF...); values are compared as float,
 // linear as stored (an 8-bit PNG becomes 0..1, no sRGB decoding).
 #pragma once
 

@@ -79,7 +79,11 @@ HostPixelsBuild host_pixels_build() {
     throw Error("", std::string("KDRAY_HOST_ISA is '") + asked + "': the one value it takes is 'generic'");
   }
 #ifdef KDRAY_HOST_PIXELS_HAVE_X86_64_V3
-  if (!generic && __builtin_cpu_supports("x86-64-v3")) return {host_pixels_x86_64_v3::render_pixels, "x86-64-v3"};
+  // The level's features that GCC and clang both name (clang 14 and 15 know no "x86-64-v3"); the
+  // CPUs that have them have the rest of it (F16C, LZCNT, MOVBE).
+  const bool x86_64_v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") &&
+                         __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("fma");
+  if (!generic && x86_64_v3) return {host_pixels_x86_64_v3::render_pixels, "x86-64-v3"};
 #endif
   return {host_pixels_generic::render_pixels, "generic"};
 }

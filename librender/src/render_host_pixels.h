@@ -1,8 +1,8 @@
 // The host renderer's inner loop, the path tracer of kernels/pt_path.h compiled as C++ for a run
-// of pixels, in two builds: for any CPU of the target (generic), and for x86-64-v3 (AVX2, BMI2, FMA), which the
-// host renderer takes where the CPU has it. The second build has no contraction into FMA either,
-// so both give the kernels' bits; they differ in instructions only (rint and selects in one
-// instruction each, three-operand forms).
+// of pixels, in two builds: for any CPU of the target (generic), and for x86-64-v3 (AVX2, BMI2,
+// FMA), which the host renderer takes where the CPU has it. The second build has no contraction
+// into FMA either, so both give the kernels' bits; they differ in instructions only (rint and
+// selects in one instruction each, three-operand forms).
 #pragma once
 
 #include "scene_arrays.h"

@@ -35,8 +35,8 @@ using std::isfinite;
 using std::rint;
 using std::sqrt;
 
-/* fmax and fmin as glibc computes them (a NaN operand gives the other operand; of two equal
- * operands, such as 0 and -0, the second), which GCC calls out of line in libm on x86-64:
+/* fmax and fmin as glibc's x86-64 code computes them (a NaN operand gives the other operand; of
+ * 0 and -0, whose sign C leaves open, the second), which GCC calls out of line in libm there:
  * written here they inline. */
 KD_INLINE float fmax(float a, float b) {
   const float larger = a > b ? a : b;

@@ -55,8 +55,9 @@ KD_INLINE uint pt_pick_light(KD_GLOBAL const PtLight* lights, uint count, float*
 /* Next-event estimation on the emissive triangles: picks one by power, then a direction towards
  * it from the shading point p by solid angle or by area (kernels/pt_spherical_triangle.h). */
 KD_INLINE void pt_next_event(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
-                          const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng, float3 wo) {
-  float2 pick_v = pt_path_sample2(path, params, PT_DIM_LIGHT_PICK);
+                          const PtBounceSamples* samples, const PtMaterial* m, float3 color, float3 p, float3 n,
+                          float3 ng, float3 wo) {
+  float2 pick_v = pt_bounce_sample2(samples, PT_DIM_LIGHT_PICK);
   float u = pick_v.x;
   uint tri = pt_pick_light(scene->lights, params->light_count, &u);
   float3 q0 = pt_corner(scene->triangle_vertices, tri, 0);
@@ -128,25 +129,26 @@ KD_INLINE void pt_shadow_towards(PtPath* path, KD_GLOBAL const PtRenderParams* p
 /* Picks a kind of light with the probabilities in params (its own sample dimension; rescaled, the
  * same number then picks a punctual light) and estimates its direct light. */
 KD_INLINE void pt_next_event_any(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
-                              const PtMaterial* m, float3 color, float3 p, float3 n, float3 ng, float3 wo) {
+                              const PtBounceSamples* samples, const PtMaterial* m, float3 color, float3 p, float3 n,
+                              float3 ng, float3 wo) {
 #ifdef KD_FEATURE_EMISSION
   /* With triangle lights the only kind (select_triangles 1), every u picks them, so u is not
    * drawn; no other value depends on it (kernels/pt_rng.h: values are counter-based). A build
    * with every feature in, the host's, comes here for such scenes. */
-  float u = params->select_triangles < 1.0f ? pt_path_sample(path, params, PT_DIM_LIGHT_TYPE) : 0.0f;
+  float u = params->select_triangles < 1.0f ? pt_bounce_sample(samples, PT_DIM_LIGHT_TYPE) : 0.0f;
   if (u < params->select_triangles) {
-    pt_next_event(path, scene, params, m, color, p, n, ng, wo);
+    pt_next_event(path, scene, params, samples, m, color, p, n, ng, wo);
     return;
   }
   u -= params->select_triangles;
 #else
-  float u = pt_path_sample(path, params, PT_DIM_LIGHT_TYPE);
+  float u = pt_bounce_sample(samples, PT_DIM_LIGHT_TYPE);
 #endif
 #ifdef KD_FEATURE_ENVIRONMENT
   if (u < params->select_environment) {
     pt_shadow_towards(path, params, m, color, p, n, ng, wo,
                       pt_env_sample_light(scene->env_texels, scene->env_cdf, params, p,
-                                          pt_path_sample2(path, params, PT_DIM_ENV_U)));
+                                          pt_bounce_sample2(samples, PT_DIM_ENV_U)));
     return;
   }
   u -= params->select_environment;

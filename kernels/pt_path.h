@@ -112,9 +112,10 @@ KD_INLINE void pt_path_shade(PtPath* path, const PtSceneData* scene, KD_GLOBAL c
     path->alive = 0;
     return;
   }
+  const PtBounceSamples samples = pt_path_samples(path, params);
   if (k >= PT_ROULETTE_START) {
     float survive = fmin(sqrt(pt_max3(beta)), 1.0f);
-    if (pt_path_sample(path, params, PT_DIM_ROULETTE) >= survive) {
+    if (pt_bounce_sample(&samples, PT_DIM_ROULETTE) >= survive) {
       path->alive = 0;
       return;
     }
@@ -122,14 +123,15 @@ KD_INLINE void pt_path_shade(PtPath* path, const PtSceneData* scene, KD_GLOBAL c
     path->throughput = beta;
   }
 #if defined(KD_FEATURE_ENVIRONMENT) || defined(KD_FEATURE_PUNCTUAL)
-  if (!pt_is_delta(m.type)) pt_next_event_any(path, scene, params, &m, color, p, n, ng_facing, wo);
+  if (!pt_is_delta(m.type)) pt_next_event_any(path, scene, params, &samples, &m, color, p, n, ng_facing, wo);
 #elif defined(KD_FEATURE_EMISSION)
-  if (params->light_count > 0 && !pt_is_delta(m.type)) pt_next_event(path, scene, params, &m, color, p, n, ng_facing, wo);
+  if (params->light_count > 0 && !pt_is_delta(m.type))
+    pt_next_event(path, scene, params, &samples, &m, color, p, n, ng_facing, wo);
 #endif
-  float2 u = pt_path_sample2(path, params, PT_DIM_BSDF_U);
+  float2 u = pt_bounce_sample2(&samples, PT_DIM_BSDF_U);
 #ifdef KD_FEATURE_METALLIC_ROUGHNESS
   /* Only the layered material reads it (pt_bsdf_sample); not drawn for the others. */
-  float u_lobe = m.type == PT_METALLIC_ROUGHNESS ? pt_path_sample(path, params, PT_DIM_LOBE) : 0.0f;
+  float u_lobe = m.type == PT_METALLIC_ROUGHNESS ? pt_bounce_sample(&samples, PT_DIM_LOBE) : 0.0f;
 #else
   float u_lobe = 0.0f;
 #endif

@@ -72,19 +72,17 @@ KD_INLINE RayRecord pt_ray(float3 origin, float3 direction, float tmax) {
   RayRecord ray = {origin.x, origin.y, origin.z, direction.x, direction.y, direction.z, 0.0f, tmax};
   return ray;
 }
-/* Both values of the sample's dimension pair starting at even `dimension` (kernels/pt_rng.h). */
-KD_INLINE float2 pt_sample2(KD_GLOBAL const PtRenderParams* params, uint sample_hash, uint sample, uint dimension) {
-  PtBits2 bits = pt_hashed_bits2(params->sampler, sample_hash, sample, dimension);
+/* The sample values of the path's current bounce (kernels/pt_rng.h), read by PT_DIM_*: one value,
+ * or both values of the pair starting at an even one. */
+KD_INLINE PtBounceSamples pt_path_samples(const PtPath* path, KD_GLOBAL const PtRenderParams* params) {
+  return pt_bounce_samples(params->sampler, path->sample_hash, path->sample, PT_BOUNCE_DIMS(path->bounce));
+}
+KD_INLINE float pt_bounce_sample(const PtBounceSamples* samples, uint dim) {
+  return pt_bits_to_unit(pt_bounce_bits(samples, dim));
+}
+KD_INLINE float2 pt_bounce_sample2(const PtBounceSamples* samples, uint dim) {
+  PtBits2 bits = pt_bounce_bits2(samples, dim);
   return KD_FLOAT2(pt_bits_to_unit(bits.x), pt_bits_to_unit(bits.y));
-}
-/* Sample value `dim` (PT_DIM_*, kernels/pt_rng.h) of the path's current bounce, or both values
- * of the pair starting at even `dim`. */
-KD_INLINE float pt_path_sample(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
-  return pt_bits_to_unit(
-      pt_hashed_bits(params->sampler, path->sample_hash, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim));
-}
-KD_INLINE float2 pt_path_sample2(const PtPath* path, KD_GLOBAL const PtRenderParams* params, uint dim) {
-  return pt_sample2(params, path->sample_hash, path->sample, PT_BOUNCE_DIMS(path->bounce) + dim);
 }
 
 KD_INLINE RayRecord pt_path_ray(const PtPath* path) { return pt_ray(path->origin, path->direction, INFINITY); }
@@ -101,7 +99,9 @@ KD_INLINE uint pt_path_key(const PtPath* path, KD_GLOBAL const PtRenderParams* p
 KD_INLINE void pt_path_begin(PtPath* path, KD_GLOBAL const PtRenderParams* params, uint pixel, uint sample) {
   uint x = pixel % params->width, y = pixel / params->width;
   path->sample_hash = pt_sample_hash(params->sampler, params->seed, pixel, sample);
-  float2 jitter = pt_sample2(params, path->sample_hash, sample, PT_DIM_CAMERA_X);
+  /* the camera's pair, read as the first values of a "bounce" that starts at dimension 0 */
+  const PtBounceSamples camera = pt_bounce_samples(params->sampler, path->sample_hash, sample, PT_DIM_CAMERA_X);
+  float2 jitter = pt_bounce_sample2(&camera, 0u);
   float sx = 2.0f * ((float)x + jitter.x) / (float)params->width - 1.0f;
   float sy = 1.0f - 2.0f * ((float)y + jitter.y) / (float)params->height;
   float3 forward = vload3(0, params->cam_forward), right = vload3(0, params->cam_right);

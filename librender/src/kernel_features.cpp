@@ -58,6 +58,8 @@ std::string kernel_feature_options(uint32_t feature_bits, const DeviceSelection&
   std::string options = "-cl-std=CL1.2";
   for (const auto& [bit, name] : kDefines)
     if (feature_bits & bit) options += std::string(" -D") + name;
+  // On a CPU a work-item's vector registers are free lanes; on a GPU the lanes are work-items.
+  if (!gpu) options += kBounceBitsInLanesOption;
   return options + traversal_build_options(device, gpu);
 }
 

@@ -22,6 +22,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <utility>
 
@@ -83,9 +84,9 @@ HostPixelsBuild host_pixels_build() {
   // CPUs that have them have the rest of it (F16C, LZCNT, MOVBE).
   const bool x86_64_v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") &&
                          __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("fma");
-  if (!generic && x86_64_v3) return {host_pixels_x86_64_v3::render_pixels, "x86-64-v3"};
+  if (!generic && x86_64_v3) return {host_pixels_x86_64_v3::render_pixels, "x86-64-v3", true};
 #endif
-  return {host_pixels_generic::render_pixels, "generic"};
+  return {host_pixels_generic::render_pixels, "generic", false};
 }
 
 std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tree, const ResolvedRender& render,
@@ -102,7 +103,8 @@ std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tre
   RenderStats& stats = host->stats;
   stats.device = kHostDevice;
   // Every feature compiled in; the scene's own, as an OpenCL build would name them, gate them.
-  const std::string options = kernel_feature_options(render.feature_bits, DeviceSelection{}, false);
+  std::string options = kernel_feature_options(render.feature_bits, DeviceSelection{}, false);
+  if (!build.bounce_bits_in_lanes) options.erase(options.find(kBounceBitsInLanesOption), std::strlen(kBounceBitsInLanesOption));
   const size_t defines = options.find(" -D");
   stats.kernel_options = "-DKD_ALL_FEATURES" + (defines == std::string::npos ? "" : options.substr(defines));
   stats.default_light = render.environment && !render.settings.environment;

@@ -27,10 +27,17 @@
 #define KD_FEATURE_PUNCTUAL
 #define KD_FEATURE_ORTHOGRAPHIC
 #define KD_MIS_OFF  // a switch, asked of the scene's bits as the features are
+#ifdef KDRAY_HOST_PIXELS_X86_64_V3
+#define PT_BOUNCE_BITS_IN_LANES  // one AVX2 register holds a bounce's first 8 sample values
+#endif
 
 #include "render_host_pixels.h"
 
 #include <kernels/kd_vector.h>
+
+#ifdef __AVX2__
+#include <immintrin.h>  // for kernels/pt_rng.h, outside the namespace below
+#endif
 
 // The device code, in this file's own namespace: no other file compiles it with these defines.
 namespace {

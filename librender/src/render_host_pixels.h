@@ -21,6 +21,7 @@ using RenderHostPixels = uint64_t (*)(const SceneArrays& arrays, const PtRenderP
 struct HostPixelsBuild {
   RenderHostPixels render;
   const char* name;  // "generic" or "x86-64-v3"
+  bool bounce_bits_in_lanes;  // PT_BOUNCE_BITS_IN_LANES (kernels/pt_rng.h): the AVX2 build's
 };
 
 // The build for this CPU: x86-64-v3 where the CPU has it, unless the environment variable

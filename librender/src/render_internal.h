@@ -49,6 +49,8 @@ ResolvedRender resolve_render(const Scene& scene, const RenderSettings& requeste
 uint32_t kernel_feature_bits(const Scene& scene, const RenderSettings& settings, const Camera& camera,
                              const Environment* environment);
 std::string kernel_feature_options(uint32_t feature_bits, const DeviceSelection& device, bool gpu);
+// The option with which a CPU's program computes a bounce's sample values in lanes (kernels/pt_rng.h).
+inline constexpr const char* kBounceBitsInLanesOption = " -DPT_BOUNCE_BITS_IN_LANES";
 
 // The camera as the kernels' parameters for a width x height image (render_view.cpp).
 void set_camera(PtRenderParams& params, const Camera& camera, uint32_t width, uint32_t height);

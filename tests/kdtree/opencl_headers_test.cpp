@@ -48,6 +48,14 @@ __kernel void sample_bits(__global const kd_u32* keys, __global kd_u32* bits) {
   bits[3 * i + 1] = pair.x;
   bits[3 * i + 2] = pair.y;
 }
+
+/* keys as above, the dimension a bounce's first; bits: PT_BOUNCE_LANES per query, computed in lanes. */
+__kernel void bounce_bits_in_lanes(__global const kd_u32* keys, __global kd_u32* bits) {
+  size_t i = get_global_id(0);
+  __global const kd_u32* k = keys + 5 * i;
+  PtBounceBits lanes = pt_bounce_bits_in_lanes(k[0], pt_sample_hash(k[0], k[1], k[2], k[3]), k[3], k[4]);
+  for (uint d = 0; d < PT_BOUNCE_LANES; ++d) bits[PT_BOUNCE_LANES * i + d] = lanes.bits[d];
+}
 )CL";
 
 class OpenClDevice {
@@ -242,6 +250,19 @@ TEST(KdOpenCl, SampleValuesMatchTheCpuBitForBit) {
     // The pair form gives the same bits as two single values.
     ASSERT_EQ(kernel[3 * i + 1], pt_sample_bits(k[0], k[1], k[2], k[3], pair)) << "query " << i;
     ASSERT_EQ(kernel[3 * i + 2], pt_sample_bits(k[0], k[1], k[2], k[3], pair + 1)) << "query " << i;
+  }
+  // A bounce's first values in OpenCL C's uint8 lanes (what PoCL's programs use).
+  for (size_t i = 0; i < count; ++i) keys[5 * i + 4] = PT_BOUNCE_DIMS(keys[5 * i + 4] % 50);
+  std::vector<kd_u32> lanes(PT_BOUNCE_LANES * count, 0);
+  cl_mem lanes_out = device.buffer(lanes.data(), lanes.size() * 4);
+  device.run("bounce_bits_in_lanes", {device.buffer(keys.data(), keys.size() * 4), lanes_out}, count, lanes_out,
+             lanes.data(), lanes.size() * 4);
+  for (size_t i = 0; i < count; ++i) {
+    const kd_u32* k = &keys[5 * i];
+    for (kd_u32 d = 0; d < PT_BOUNCE_LANES; ++d) {
+      ASSERT_EQ(lanes[PT_BOUNCE_LANES * i + d], pt_sample_bits(k[0], k[1], k[2], k[3], k[4] + d))
+          << "sampler " << k[0] << " index " << k[3] << " dimension " << k[4] + d;
+    }
   }
 }
 

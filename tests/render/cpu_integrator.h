@@ -41,7 +41,10 @@ inline std::set<std::string> option_defines(const std::string& options) {
 inline size_t expect_host_matches_kernel(Scene& scene, const RenderSettings& settings,
                                          const std::set<std::string>& kernel_defines, unsigned threads = 0) {
   const KdTree tree = tree_for(scene);
-  EXPECT_EQ(option_defines(kernel_feature_options(scene, settings, DeviceSelection{"cpu"})), kernel_defines)
+  // and, on a CPU, the bounce's sample values in lanes (kernels/pt_rng.h)
+  std::set<std::string> cpu_defines = kernel_defines;
+  cpu_defines.insert("-DPT_BOUNCE_BITS_IN_LANES");
+  EXPECT_EQ(option_defines(kernel_feature_options(scene, settings, DeviceSelection{"cpu"})), cpu_defines)
       << "the scene's kernel features";
   const Film film = render(scene, tree, settings, DeviceSelection{"cpu"});
   const size_t channels = film.channels.size();
@@ -58,6 +61,10 @@ inline size_t expect_host_matches_kernel(Scene& scene, const RenderSettings& set
     if (*build) {
       EXPECT_EQ(stats.build_source, std::string("built in, ") + build);
     }
+    // The generic build computes each sample value alone, the x86-64-v3 one in lanes.
+    EXPECT_EQ(option_defines(stats.kernel_options).count("-DPT_BOUNCE_BITS_IN_LANES"),
+              stats.build_source == "built in, x86-64-v3" ? 1u : 0u)
+        << stats.kernel_options;
     EXPECT_EQ(cpu.sums.size(), film.sums.size());
     size_t mismatches = 0;
     for (size_t i = 0; i < std::min(cpu.sums.size(), film.sums.size()); ++i) {

@@ -58,6 +58,23 @@ TEST(SobolSampler, DimensionOneMatchesItsDirectionNumbers) {
   }
 }
 
+TEST(Samplers, ABouncesValuesInLanesAreItsScalarValues) {
+  // The CPUs' form of a bounce's first 8 values (pt_bounce_bits_in_lanes) against pt_hashed_bits,
+  // value by value, for both samplers, over sample indices and bounces of every size.
+  for (uint32_t sampler : {PT_SAMPLER_SOBOL, PT_SAMPLER_INDEPENDENT}) {
+    for (uint32_t i = 0; i < 20000; ++i) {
+      const uint32_t sample_hash = pt_sample_hash(sampler, 7, pt_hash32(i), i);
+      const uint32_t index = i < 10000 ? i : pt_hash32(i ^ 0x5bd1e995u);
+      const uint32_t first = PT_BOUNCE_DIMS(i % 40);
+      const PtBounceBits lanes = pt_bounce_bits_in_lanes(sampler, sample_hash, index, first);
+      for (uint32_t d = 0; d < PT_BOUNCE_LANES; ++d) {
+        ASSERT_EQ(lanes.bits[d], pt_hashed_bits(sampler, sample_hash, index, first + d))
+            << "sampler " << sampler << ", index " << index << ", dimension " << first + d;
+      }
+    }
+  }
+}
+
 TEST(SobolSampler, PairsAreStratifiedInEveryElementaryIntervalUpTo1024Samples) {
   const uint32_t pairs[] = {PT_DIM_CAMERA_X, PT_BOUNCE_DIMS(0) + PT_DIM_LIGHT_PICK, PT_BOUNCE_DIMS(0) + PT_DIM_BSDF_U,
                             PT_BOUNCE_DIMS(3) + PT_DIM_ROULETTE, PT_BOUNCE_DIMS(7) + PT_DIM_BSDF_U};

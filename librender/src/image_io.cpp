@@ -315,19 +315,20 @@ Film read_film_exr(const std::string& path) {
   const std::string settings_hash = text_attribute(header, "kdray:settings_hash", "");  // absent in older images
   film.settings_hash = settings_hash.empty() ? 0 : parse_hex(path, settings_hash);
 
-  std::vector<uint32_t> sum_channel(film.pixel_count());
+  // The sum channels in one read: the file is decompressed once, not once per channel.
+  const int first = std::min(*std::min_element(hi_index.begin(), hi_index.end()),
+                             *std::min_element(lo_index.begin(), lo_index.end()));
+  const int end = std::max(*std::max_element(hi_index.begin(), hi_index.end()),
+                           *std::max_element(lo_index.begin(), lo_index.end())) + 1;
+  const size_t stride = size_t(end - first);
+  std::vector<uint32_t> words(film.pixel_count() * stride);
+  if (!in->read(first, end, PixelType::UInt32, words.data())) throw Error(path, "cannot read image: " + in->problem());
   film.sums.assign(film.pixel_count() * film.channels.size(), 0);
-  for (size_t c = 0; c < film.channels.size(); ++c) {
-    for (int part = 0; part < 2; ++part) {
-      int index = part == 0 ? hi_index[c] : lo_index[c];
-      if (!in->read(index, index + 1, PixelType::UInt32, sum_channel.data())) {
-        throw Error(path, "cannot read image: " + in->problem());
-      }
-      for (size_t p = 0; p < film.pixel_count(); ++p) {
-        uint64_t bits = static_cast<uint64_t>(film.sums[p * film.channels.size() + c]);
-        bits |= part == 0 ? uint64_t(sum_channel[p]) << 32 : uint64_t(sum_channel[p]);
-        film.sums[p * film.channels.size() + c] = static_cast<int64_t>(bits);
-      }
+  for (size_t p = 0; p < film.pixel_count(); ++p) {
+    const uint32_t* pixel = &words[p * stride];
+    for (size_t c = 0; c < film.channels.size(); ++c) {
+      const uint64_t bits = uint64_t(pixel[hi_index[c] - first]) << 32 | pixel[lo_index[c] - first];
+      film.sums[p * film.channels.size() + c] = static_cast<int64_t>(bits);
     }
   }
   return film;

@@ -11,6 +11,7 @@
 #include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfThreading.h>
 
 #include <algorithm>
 #include <cctype>
@@ -22,6 +23,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string_view>
+#include <thread>
 #include <tuple>
 
 namespace kdray {
@@ -40,6 +42,18 @@ bool guarded(std::string& problem, Work&& work) {
     problem = "unknown error in OpenEXR";
   }
   return false;
+}
+
+// Line blocks are compressed and decompressed on every core, as OpenImageIO's EXR reader and
+// writer did: ZIP is most of the time of reading or writing a large film. OpenEXR runs a file's
+// blocks on its global thread pool, which is made here once.
+int exr_threads() {
+  static const int threads = [] {
+    const int count = int(std::max(1u, std::thread::hardware_concurrency()));
+    Imf::setGlobalThreadCount(count);
+    return count;
+  }();
+  return threads;
 }
 
 // Both kdray pixel types OpenEXR stores are 4 bytes; it has no 8-bit channels.
@@ -134,7 +148,7 @@ void read_attributes(const Imf::Header& header, std::map<std::string, ImageAttri
 // The first part of the file (scanline or tiled; the top level of a tiled one).
 class ExrReader : public ImageReader {
  public:
-  explicit ExrReader(const std::string& path) : file_(path.c_str()) {
+  explicit ExrReader(const std::string& path) : file_(path.c_str(), exr_threads()) {
     const Imf::Header& exr = file_.header();
     if (exr.hasType() && Imf::isDeepData(exr.type())) throw std::runtime_error("a deep image, which kdray does not read");
     // OpenEXR has checked that the data window is within +-INT_MAX / 2.
@@ -222,7 +236,7 @@ bool write_exr(const std::string& path, const ImageHeader& header, std::optional
     if (!stream) throw std::runtime_error(std::string("cannot create the file: ") + std::strerror(errno));
     {
       Imf::StdOFStream exr_stream(stream, path.c_str());
-      Imf::OutputFile file(exr_stream, exr);
+      Imf::OutputFile file(exr_stream, exr, exr_threads());
       file.setFrameBuffer(frame);
       file.writePixels(header.height);
     }

@@ -271,7 +271,7 @@ KD_INLINE kd_u32 pt_bounce_bits(const PtBounceSamples* s, kd_u32 d) {
 }
 KD_INLINE PtBits2 pt_bounce_bits2(const PtBounceSamples* s, kd_u32 d) {
 #ifdef PT_BOUNCE_BITS_IN_LANES
-  if (d < PT_BOUNCE_LANES) {
+  if (d + 1u < PT_BOUNCE_LANES) {
     PtBits2 bits;
     bits.x = s->lanes.bits[d];
     bits.y = s->lanes.bits[d + 1u];

@@ -104,7 +104,9 @@ std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tre
   stats.device = kHostDevice;
   // Every feature compiled in; the scene's own, as an OpenCL build would name them, gate them.
   std::string options = kernel_feature_options(render.feature_bits, DeviceSelection{}, false);
-  if (!build.bounce_bits_in_lanes) options.erase(options.find(kBounceBitsInLanesOption), std::strlen(kBounceBitsInLanesOption));
+  // as a CPU's program would be built, less the sample values in lanes where this build has none
+  const size_t lanes = options.find(kBounceBitsInLanesOption);
+  if (!build.bounce_bits_in_lanes && lanes != std::string::npos) options.erase(lanes, std::strlen(kBounceBitsInLanesOption));
   const size_t defines = options.find(" -D");
   stats.kernel_options = "-DKD_ALL_FEATURES" + (defines == std::string::npos ? "" : options.substr(defines));
   stats.default_light = render.environment && !render.settings.environment;

@@ -29,6 +29,15 @@ KD_INLINE kd_u32 kd_as_uint(float value) { return as_uint(value); }
 #define KD_CONCAT(a, b) KD_CONCAT_(a, b)
 #define KD_STATIC_ASSERT(cond, msg) typedef char KD_CONCAT(kd_static_assert_, __COUNTER__)[(cond) ? 1 : -1]
 #define KD_OFFSETOF(type, member) __builtin_offsetof(type, member)
+/* Four floats (ints) side by side in one vector register: comparisons give -1 or 0 per lane. */
+typedef float4 kd_f4;
+typedef int4 kd_i4;
+#define KD_F4(a, b, c, d) ((float4)((a), (b), (c), (d)))
+KD_HOT_INLINE void kd_f4_store(kd_f4 v, float* p) { vstore4(v, 0, p); }
+/* Bit k set where lane k of the mask is -1. */
+KD_HOT_INLINE kd_u32 kd_i4_bits(kd_i4 mask) { return (kd_u32)((mask.x & 1) | (mask.y & 2) | (mask.z & 4) | (mask.w & 8)); }
+/* The index of the lowest set bit of a nonzero word. */
+KD_HOT_INLINE int kd_lowest_bit(kd_u32 bits) { return 31 - (int)clz(bits & (0u - bits)); }
 #else
 /* ---- C++ ---- */
 #include <cmath>
@@ -53,6 +62,18 @@ inline kd_u32 kd_as_uint(float value) {
 }
 #define KD_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
 #define KD_OFFSETOF(type, member) offsetof(type, member)
+typedef float kd_f4 __attribute__((vector_size(16)));
+typedef kd_i32 kd_i4 __attribute__((vector_size(16)));
+#define KD_F4(a, b, c, d) (kd_f4{(a), (b), (c), (d)})
+inline void kd_f4_store(kd_f4 v, float* p) { std::memcpy(p, &v, sizeof v); }
+inline kd_u32 kd_i4_bits(kd_i4 mask) {
+#ifdef __SSE__
+  return (kd_u32)__builtin_ia32_movmskps((kd_f4)mask);
+#else
+  return (kd_u32)((mask[0] & 1) | (mask[1] & 2) | (mask[2] & 4) | (mask[3] & 8));
+#endif
+}
+inline int kd_lowest_bit(kd_u32 bits) { return __builtin_ctz(bits); }
 #endif
 
 #endif /* KD_COMPAT_H */

@@ -123,6 +123,28 @@ KD_INLINE int kd_ray_box(const KdRay* ray, const float bmin[3], const float bmax
   return lo <= hi;
 }
 
+/* The watertight test's arithmetic, written once for one triangle (TYPE float) and for four side
+ * by side (TYPE kd_f4, kd_intersect_leaf on CPUs), so that every lane makes the one triangle's
+ * operations in the same order: from the corners' coordinates in the ray's axis order (kx, ky,
+ * kz) it declares the corners' z relative to the origin (Az, Bz, Cz), their sheared x and y, and
+ * the edge functions U, V and W. */
+#define KD_WATERTIGHT_EDGES(TYPE, ray, AX, AY, AZ, BX, BY, BZ, CX, CY, CZ)                             \
+  const float kd_ox_ = (ray)->org[(ray)->kx], kd_oy_ = (ray)->org[(ray)->ky], kd_oz_ = (ray)->org[(ray)->kz]; \
+  const TYPE Az = (AZ) - kd_oz_, Bz = (BZ) - kd_oz_, Cz = (CZ) - kd_oz_;                              \
+  const TYPE ax = ((AX) - kd_ox_) - (ray)->sx * Az;                                                  \
+  const TYPE ay = ((AY) - kd_oy_) - (ray)->sy * Az;                                                  \
+  const TYPE bx = ((BX) - kd_ox_) - (ray)->sx * Bz;                                                  \
+  const TYPE by = ((BY) - kd_oy_) - (ray)->sy * Bz;                                                  \
+  const TYPE cx = ((CX) - kd_ox_) - (ray)->sx * Cz;                                                  \
+  const TYPE cy = ((CY) - kd_oy_) - (ray)->sy * Cz;                                                  \
+  TYPE U = cx * by - cy * bx;                                                                        \
+  TYPE V = ax * cy - ay * cx;                                                                        \
+  TYPE W = bx * ay - by * ax
+
+/* The hit's distance times the determinant U + V + W, from KD_WATERTIGHT_EDGES's values. */
+#define KD_WATERTIGHT_T(ray, U, V, W, Az, Bz, Cz) \
+  ((U) * ((ray)->sz * (Az)) + (V) * ((ray)->sz * (Bz)) + (W) * ((ray)->sz * (Cz)))
+
 /* Watertight ray/triangle test against the whole line of the ray. Returns 1 when the line
  * passes through the triangle (a, b, c) and writes its t and the barycentrics u (of b) and
  * v (of c); the caller decides which t it accepts. Triangles seen edge-on (determinant 0) are
@@ -132,17 +154,7 @@ KD_INLINE int kd_ray_box(const KdRay* ray, const float bmin[3], const float bmax
 KD_HOT_INLINE int kd_ray_triangle_line(const KdRay* ray, KD_GLOBAL const float* a, KD_GLOBAL const float* b,
                                        KD_GLOBAL const float* c, float* t_out, float* u_out, float* v_out) {
   const int kx = ray->kx, ky = ray->ky, kz = ray->kz;
-  const float ox = ray->org[kx], oy = ray->org[ky], oz = ray->org[kz];
-  const float Az = a[kz] - oz, Bz = b[kz] - oz, Cz = c[kz] - oz;
-  const float ax = (a[kx] - ox) - ray->sx * Az;
-  const float ay = (a[ky] - oy) - ray->sy * Az;
-  const float bx = (b[kx] - ox) - ray->sx * Bz;
-  const float by = (b[ky] - oy) - ray->sy * Bz;
-  const float cx = (c[kx] - ox) - ray->sx * Cz;
-  const float cy = (c[ky] - oy) - ray->sy * Cz;
-  float U = cx * by - cy * bx;
-  float V = ax * cy - ay * cx;
-  float W = bx * ay - by * ax;
+  KD_WATERTIGHT_EDGES(float, ray, a[kx], a[ky], a[kz], b[kx], b[ky], b[kz], c[kx], c[ky], c[kz]);
 #if KD_HAS_DOUBLE
   if (U == 0.0f || V == 0.0f || W == 0.0f) {
     U = (float)((double)cx * (double)by - (double)cy * (double)bx);
@@ -153,10 +165,7 @@ KD_HOT_INLINE int kd_ray_triangle_line(const KdRay* ray, KD_GLOBAL const float* 
   if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return 0;
   const float det = U + V + W;
   if (det == 0.0f) return 0;
-  const float az = ray->sz * Az;
-  const float bz = ray->sz * Bz;
-  const float cz = ray->sz * Cz;
-  const float T = U * az + V * bz + W * cz;
+  const float T = KD_WATERTIGHT_T(ray, U, V, W, Az, Bz, Cz);
   const float inv_det = 1.0f / det;
   *t_out = T * inv_det;
   *u_out = V * inv_det;

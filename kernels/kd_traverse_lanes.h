@@ -62,7 +62,6 @@ KD_HOT_INLINE kd_u32 kd_lane_bits(kd_lane_i mask) {
   const int2 quarter = halves.lo | halves.hi;
   return (kd_u32)(quarter.x | quarter.y);
 }
-KD_HOT_INLINE int kd_lowest_bit(kd_u32 bits) { return 31 - (int)clz(bits & (0u - bits)); }
 KD_HOT_INLINE int kd_bit_count(kd_u32 bits) { return (int)popcount(bits); }
 #else
 #include <immintrin.h>
@@ -87,7 +86,6 @@ inline kd_lane_i kd_lane_gather(const kd_i32* base, kd_lane_i i) {
   return (kd_lane_i)_mm256_i32gather_epi32(base, (__m256i)i, 4);
 }
 inline kd_u32 kd_lane_bits(kd_lane_i mask) { return (kd_u32)_mm256_movemask_ps((__m256)mask); }
-inline int kd_lowest_bit(kd_u32 bits) { return __builtin_ctz(bits); }
 inline int kd_bit_count(kd_u32 bits) { return __builtin_popcount(bits); }
 #endif
 

@@ -41,9 +41,11 @@ inline std::set<std::string> option_defines(const std::string& options) {
 inline size_t expect_host_matches_kernel(Scene& scene, const RenderSettings& settings,
                                          const std::set<std::string>& kernel_defines, unsigned threads = 0) {
   const KdTree tree = tree_for(scene);
-  // and, on a CPU, the bounce's sample values in lanes (kernels/pt_rng.h)
+  // and, on a CPU, the bounce's sample values in lanes (kernels/pt_rng.h) and a leaf's triangles
+  // tested four at a time (kernels/kd_scene_view.h)
   std::set<std::string> cpu_defines = kernel_defines;
   cpu_defines.insert("-DPT_BOUNCE_BITS_IN_LANES");
+  cpu_defines.insert("-DKD_LEAF_TESTS_IN_LANES");
   EXPECT_EQ(option_defines(kernel_feature_options(scene, settings, DeviceSelection{"cpu"})), cpu_defines)
       << "the scene's kernel features";
   const Film film = render(scene, tree, settings, DeviceSelection{"cpu"});

@@ -134,6 +134,11 @@ TEST(TraceKernelBuilds, EachDeviceKindGetsItsOwnTraversalUnlessOneIsNamed) {
   EXPECT_EQ(trace_kernel_build(named, true).options.find(robust_only), std::string::npos);
   named.traversal = TraversalPath::Robust;
   EXPECT_NE(trace_kernel_build(named, false).options.find(robust_only), std::string::npos);
+  // A CPU tests a leaf's triangles four at a time in lanes, a GPU one at a time (its lanes are
+  // work-items); the render kernels take the same traversal options (traversal_build_options).
+  const std::string leaf_lanes = "-DKD_LEAF_TESTS_IN_LANES";
+  EXPECT_NE(cpu.options.find(leaf_lanes), std::string::npos) << cpu.options;
+  EXPECT_EQ(gpu.options.find(leaf_lanes), std::string::npos) << gpu.options;
   EXPECT_STREQ(traversal_path_name(TraversalPath::Robust), "robust");
   EXPECT_STREQ(traversal_path_name(TraversalPath::FastWhereSafe), "fast");
 }

@@ -8,7 +8,6 @@
 #include "traversal_variant.h"
 
 #include <kdray/kdtree.h>
-#include <kdray/ray_sets.h>
 #include <kdray/traverse.h>
 
 #include <icosphere.h>
@@ -35,13 +34,6 @@ namespace kdray::one_at_a_time {
 
 namespace kdray {
 namespace {
-
-std::vector<RayRecord> ray_mix(const Scene& scene, const KdTree& tree, uint64_t seed) {
-  std::vector<RayRecord> rays = random_rays(scene_bounds(scene), 8000, seed);
-  for (const std::vector<RayRecord>& more : {hard_case_rays(scene, tree, 8000, seed + 1), camera_rays(scene, 64, 48)})
-    rays.insert(rays.end(), more.begin(), more.end());
-  return rays;
-}
 
 // Traces `rays` through `tree` with the library's traversal (leaf tests in lanes) and with the
 // one-at-a-time build above, closest and any hit, and reports the first ray that differs.
@@ -85,7 +77,7 @@ TEST(LeafLanes, GiveTheOneAtATimeHitsOnEveryLeafSize) {
     BuildSettings settings;
     settings.max_depth = c.max_depth;
     const KdTree tree = build_kdtree(*c.scene, settings);
-    expect_same_hits(tree, ray_mix(*c.scene, tree, 41), c.name);
+    expect_same_hits(tree, test::ray_mix(*c.scene, tree, 8000, 41), c.name);
   }
 }
 

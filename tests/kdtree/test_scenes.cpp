@@ -1,6 +1,7 @@
 #include "test_scenes.h"
 
 #include <kdray/import.h>
+#include <kdray/ray_sets.h>
 
 #include <kernels/kd_geometry.h>
 
@@ -126,6 +127,13 @@ DoubleHit brute_force_double(const Scene& scene, const RayRecord& ray) {
     if (candidate.hit && (!best.hit || candidate.t < best.t)) best = candidate;
   }
   return best;
+}
+
+std::vector<RayRecord> ray_mix(const Scene& scene, const KdTree& tree, size_t count, uint64_t seed) {
+  std::vector<RayRecord> rays = random_rays(scene_bounds(scene), count, seed);
+  for (const std::vector<RayRecord>& more : {hard_case_rays(scene, tree, count, seed + 1), camera_rays(scene, 64, 48)})
+    rays.insert(rays.end(), more.begin(), more.end());
+  return rays;
 }
 
 std::vector<uint32_t> leaf_triangle_indices(const KdTree& tree) {

@@ -30,6 +30,10 @@ HitRecord brute_force_float(const Scene& scene, const RayRecord& ray, bool skip_
 // True when the hit's triangle contains the ray origin (its exact t is ~0).
 bool is_origin_hit(const Scene& scene, const RayRecord& ray, const HitRecord& hit);
 
+// Random rays (`count`), as many hard-case rays (kdray/ray_sets.h) and 64x48 camera rays of the
+// scene, in that order: the mix the traversal variants are compared on.
+std::vector<RayRecord> ray_mix(const Scene& scene, const KdTree& tree, size_t count, uint64_t seed);
+
 // The scene triangles of the tree's leaves, leaf after leaf in node order.
 std::vector<uint32_t> leaf_triangle_indices(const KdTree& tree);
 // The tree's nodes as version 4 of the format laid them out: each empty child an empty leaf node

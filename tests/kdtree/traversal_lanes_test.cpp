@@ -21,13 +21,6 @@
 namespace kdray {
 namespace {
 
-std::vector<RayRecord> ray_mix(const Scene& scene, const KdTree& tree, uint64_t seed) {
-  std::vector<RayRecord> rays = random_rays(scene_bounds(scene), 6000, seed);
-  for (const std::vector<RayRecord>& more : {hard_case_rays(scene, tree, 6000, seed + 1), camera_rays(scene, 64, 48)})
-    rays.insert(rays.end(), more.begin(), more.end());
-  return rays;
-}
-
 // Traces `rays` both ways and reports the first ray whose hit record differs in any byte.
 void expect_lanes_match_one_ray_at_a_time(const KdTree& tree, const std::vector<RayRecord>& rays,
                                           const std::string& name) {
@@ -64,7 +57,7 @@ TEST_F(TraversalLanes, SameHitsAsOneRayAtATimeOnGeneratedScenes) {
                                     {"triangle soup", test::triangle_soup(4000, 5)},
                                     {"coplanar grid", test::coplanar_grid(24)}}) {
     const KdTree tree = build_kdtree(scene, BuildSettings{});
-    expect_lanes_match_one_ray_at_a_time(tree, ray_mix(scene, tree, 11), name);
+    expect_lanes_match_one_ray_at_a_time(tree, test::ray_mix(scene, tree, 6000, 11), name);
   }
 }
 
@@ -74,7 +67,7 @@ TEST_F(TraversalLanes, SameHitsOnTheBunnyAndFromInsideIt) {
   const Scene scene = test::mesh_file(path);
   const KdTree tree = build_kdtree(scene, BuildSettings{});
   ASSERT_GT(tree.nodes.size(), kLanesMinNodes) << "trace_closest must choose the lanes for this tree";
-  std::vector<RayRecord> rays = ray_mix(scene, tree, 21);
+  std::vector<RayRecord> rays = test::ray_mix(scene, tree, 6000, 21);
   const Bounds bounds = scene_bounds(scene);
   const Vec3 centre{(bounds.min.x + bounds.max.x) / 2, (bounds.min.y + bounds.max.y) / 2,
                     (bounds.min.z + bounds.max.z) / 2};

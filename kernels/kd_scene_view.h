@@ -77,6 +77,7 @@ KD_INLINE int kd_hit_precedes(float t, kd_u32 triangle, const HitRecord* best) {
  * KD_LEAF_TESTS_ONE_AT_A_TIME gets the GPU's test (to compare the two). */
 #if (!defined(__OPENCL_VERSION__) && !defined(KD_LEAF_TESTS_ONE_AT_A_TIME)) || defined(KD_LEAF_TESTS_IN_LANES)
 #define KD_LEAF_LANES 1
+KD_STATIC_ASSERT(KD_LEAF_PAGE_TRIANGLES % 4u == 0u, "four triangles of a leaf in lanes share one page of corners");
 #endif
 
 /* Tests the leaf's triangles against the ray and `hit`; returns 1 if hit changed. The block's
@@ -106,52 +107,50 @@ KD_HOT_INLINE int kd_intersect_leaf(const KdSceneView* scene, const KdRay* ray, 
   KD_GLOBAL const float* a##lane = page + 3u * (numbers##lane & KD_LEAF_CORNER_MASK);                      \
   KD_GLOBAL const float* b##lane = page + 3u * ((numbers##lane >> KD_LEAF_CORNER_BITS) & KD_LEAF_CORNER_MASK); \
   KD_GLOBAL const float* c##lane = page + 3u * (numbers##lane >> (2u * KD_LEAF_CORNER_BITS))
-    /* The page of the four: a run of four never crosses a page, whose size is a multiple of 4. */
+    /* The page of the four: a run of four starting at a multiple of 4 never crosses a page. */
     KD_GLOBAL const float* page = corners + 3u * KD_LEAF_PAGE_CORNERS * (first / KD_LEAF_PAGE_TRIANGLES);
-    {
-      KD_LEAF_LANE_CORNERS(0);
-      KD_LEAF_LANE_CORNERS(1);
-      KD_LEAF_LANE_CORNERS(2);
-      KD_LEAF_LANE_CORNERS(3);
+    KD_LEAF_LANE_CORNERS(0);
+    KD_LEAF_LANE_CORNERS(1);
+    KD_LEAF_LANE_CORNERS(2);
+    KD_LEAF_LANE_CORNERS(3);
 #undef KD_LEAF_LANE_CORNERS
-      KD_WATERTIGHT_EDGES(kd_f4, ray, KD_F4(a0[kx], a1[kx], a2[kx], a3[kx]), KD_F4(a0[ky], a1[ky], a2[ky], a3[ky]),
-                          KD_F4(a0[kz], a1[kz], a2[kz], a3[kz]), KD_F4(b0[kx], b1[kx], b2[kx], b3[kx]),
-                          KD_F4(b0[ky], b1[ky], b2[ky], b3[ky]), KD_F4(b0[kz], b1[kz], b2[kz], b3[kz]),
-                          KD_F4(c0[kx], c1[kx], c2[kx], c3[kx]), KD_F4(c0[ky], c1[ky], c2[ky], c3[ky]),
-                          KD_F4(c0[kz], c1[kz], c2[kz], c3[kz]));
-      const kd_f4 det = U + V + W;
-      const kd_i4 any_zero = (U == 0.0f) | (V == 0.0f) | (W == 0.0f);
-      const kd_i4 outside = ((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f));
-      const kd_u32 in_leaf = count - first < 4u ? (1u << (count - first)) - 1u : 15u;
-      const kd_u32 again = kd_i4_bits(any_zero) & in_leaf;
-      kd_u32 lanes = (kd_i4_bits(~(outside | (det == 0.0f))) | again) & in_leaf;
-      if (lanes == 0u) continue;
-      const kd_f4 inv_det = 1.0f / det;
-      float t[4], u[4], v[4];
-      kd_f4_store(KD_WATERTIGHT_T(ray, U, V, W, Az, Bz, Cz) * inv_det, t);
-      kd_f4_store(V * inv_det, u);
-      kd_f4_store(W * inv_det, v);
-      do {
-        const int lane = kd_lowest_bit(lanes);
-        lanes &= lanes - 1u;
-        const kd_u32 i = first + (kd_u32)lane;
-        if ((again >> lane) & 1u) { /* the one-at-a-time test, which recomputes in double */
-          const kd_u32 numbers = block[count + i];
-          if (!kd_ray_triangle_line(ray, page + 3u * (numbers & KD_LEAF_CORNER_MASK),
-                                    page + 3u * ((numbers >> KD_LEAF_CORNER_BITS) & KD_LEAF_CORNER_MASK),
-                                    page + 3u * (numbers >> (2u * KD_LEAF_CORNER_BITS)), &t[lane], &u[lane], &v[lane]))
-            continue;
-        }
-        if (t[lane] > ray->tmin && kd_hit_precedes(t[lane], block[i], hit)) {
-          hit->t = t[lane];
-          hit->triangle = block[i];
-          hit->u = u[lane];
-          hit->v = v[lane];
-          found = 1;
-          if (any_hit) return 1;
-        }
-      } while (lanes);
-    }
+    KD_WATERTIGHT_EDGES(kd_f4, ray, KD_F4(a0[kx], a1[kx], a2[kx], a3[kx]), KD_F4(a0[ky], a1[ky], a2[ky], a3[ky]),
+                        KD_F4(a0[kz], a1[kz], a2[kz], a3[kz]), KD_F4(b0[kx], b1[kx], b2[kx], b3[kx]),
+                        KD_F4(b0[ky], b1[ky], b2[ky], b3[ky]), KD_F4(b0[kz], b1[kz], b2[kz], b3[kz]),
+                        KD_F4(c0[kx], c1[kx], c2[kx], c3[kx]), KD_F4(c0[ky], c1[ky], c2[ky], c3[ky]),
+                        KD_F4(c0[kz], c1[kz], c2[kz], c3[kz]));
+    const kd_f4 det = U + V + W;
+    const kd_i4 any_zero = (U == 0.0f) | (V == 0.0f) | (W == 0.0f);
+    const kd_i4 outside = ((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f));
+    const kd_u32 in_leaf = count - first < 4u ? (1u << (count - first)) - 1u : 15u;
+    const kd_u32 again = kd_i4_bits(any_zero) & in_leaf;
+    kd_u32 lanes = (kd_i4_bits(~(outside | (det == 0.0f))) | again) & in_leaf;
+    if (lanes == 0u) continue;
+    const kd_f4 inv_det = 1.0f / det;
+    float t[4], u[4], v[4];
+    kd_f4_store(KD_WATERTIGHT_T(ray, U, V, W, Az, Bz, Cz) * inv_det, t);
+    kd_f4_store(V * inv_det, u);
+    kd_f4_store(W * inv_det, v);
+    do {
+      const int lane = kd_lowest_bit(lanes);
+      lanes &= lanes - 1u;
+      const kd_u32 i = first + (kd_u32)lane;
+      if ((again >> lane) & 1u) { /* the one-at-a-time test, which recomputes in double */
+        const kd_u32 numbers = block[count + i];
+        if (!kd_ray_triangle_line(ray, page + 3u * (numbers & KD_LEAF_CORNER_MASK),
+                                  page + 3u * ((numbers >> KD_LEAF_CORNER_BITS) & KD_LEAF_CORNER_MASK),
+                                  page + 3u * (numbers >> (2u * KD_LEAF_CORNER_BITS)), &t[lane], &u[lane], &v[lane]))
+          continue;
+      }
+      if (t[lane] > ray->tmin && kd_hit_precedes(t[lane], block[i], hit)) {
+        hit->t = t[lane];
+        hit->triangle = block[i];
+        hit->u = u[lane];
+        hit->v = v[lane];
+        found = 1;
+        if (any_hit) return 1;
+      }
+    } while (lanes);
   }
 #else
   for (kd_u32 i = 0; i < count; ++i) {

@@ -5,7 +5,6 @@
 // traversals, and on trees whose leaves hold from one to thousands of triangles (several pages
 // of corners, lengths that are not multiples of four).
 #include "test_scenes.h"
-#include "traversal_variant.h"
 
 #include <kdray/kdtree.h>
 #include <kdray/traverse.h>

@@ -71,6 +71,12 @@ KD_INLINE int kd_hit_precedes(float t, kd_u32 triangle, const HitRecord* best) {
   return t < best->t || (t == best->t && triangle < best->triangle && best->triangle != KD_NO_HIT);
 }
 
+/* Corner k (0, 1 or 2) of a leaf's triangle whose corner numbers are `numbers`, in its page of
+ * corners (kd_types.h; the tree reader refuses numbers with bits above the three corners'). */
+KD_HOT_INLINE KD_GLOBAL const float* kd_leaf_corner(KD_GLOBAL const float* page, kd_u32 numbers, kd_u32 k) {
+  return page + 3u * ((numbers >> (k * KD_LEAF_CORNER_BITS)) & KD_LEAF_CORNER_MASK);
+}
+
 /* Where leaf tests run in lanes: on CPUs (the C++ builds, and OpenCL CPU devices, which get
  * -DKD_LEAF_TESTS_IN_LANES), a leaf's triangles are tested four at a time in vector lanes. A
  * GPU keeps one triangle at a time: its lanes are work-items. A C++ includer that defines
@@ -104,9 +110,9 @@ KD_HOT_INLINE int kd_intersect_leaf(const KdSceneView* scene, const KdRay* ray, 
     /* Lanes past the leaf's end test its first triangle of the four again, and are dropped. */
 #define KD_LEAF_LANE_CORNERS(lane)                                                                         \
   const kd_u32 numbers##lane = block[count + (first + lane##u < count ? first + lane##u : first)];           \
-  KD_GLOBAL const float* a##lane = page + 3u * (numbers##lane & KD_LEAF_CORNER_MASK);                      \
-  KD_GLOBAL const float* b##lane = page + 3u * ((numbers##lane >> KD_LEAF_CORNER_BITS) & KD_LEAF_CORNER_MASK); \
-  KD_GLOBAL const float* c##lane = page + 3u * (numbers##lane >> (2u * KD_LEAF_CORNER_BITS))
+  KD_GLOBAL const float* a##lane = kd_leaf_corner(page, numbers##lane, 0u);                                \
+  KD_GLOBAL const float* b##lane = kd_leaf_corner(page, numbers##lane, 1u);                                \
+  KD_GLOBAL const float* c##lane = kd_leaf_corner(page, numbers##lane, 2u)
     /* The page of the four: a run of four starting at a multiple of 4 never crosses a page. */
     KD_GLOBAL const float* page = corners + 3u * KD_LEAF_PAGE_CORNERS * (first / KD_LEAF_PAGE_TRIANGLES);
     KD_LEAF_LANE_CORNERS(0);
@@ -137,9 +143,8 @@ KD_HOT_INLINE int kd_intersect_leaf(const KdSceneView* scene, const KdRay* ray, 
       const kd_u32 i = first + (kd_u32)lane;
       if ((again >> lane) & 1u) { /* the one-at-a-time test, which recomputes in double */
         const kd_u32 numbers = block[count + i];
-        if (!kd_ray_triangle_line(ray, page + 3u * (numbers & KD_LEAF_CORNER_MASK),
-                                  page + 3u * ((numbers >> KD_LEAF_CORNER_BITS) & KD_LEAF_CORNER_MASK),
-                                  page + 3u * (numbers >> (2u * KD_LEAF_CORNER_BITS)), &t[lane], &u[lane], &v[lane]))
+        if (!kd_ray_triangle_line(ray, kd_leaf_corner(page, numbers, 0u), kd_leaf_corner(page, numbers, 1u),
+                                  kd_leaf_corner(page, numbers, 2u), &t[lane], &u[lane], &v[lane]))
           continue;
       }
       if (t[lane] > ray->tmin && kd_hit_precedes(t[lane], block[i], hit)) {
@@ -157,9 +162,8 @@ KD_HOT_INLINE int kd_intersect_leaf(const KdSceneView* scene, const KdRay* ray, 
     const kd_u32 numbers = block[count + i];
     KD_GLOBAL const float* page = corners + 3u * KD_LEAF_PAGE_CORNERS * (i / KD_LEAF_PAGE_TRIANGLES);
     float t, u, v;
-    if (kd_ray_triangle_line(ray, page + 3u * (numbers & KD_LEAF_CORNER_MASK),
-                             page + 3u * ((numbers >> KD_LEAF_CORNER_BITS) & KD_LEAF_CORNER_MASK),
-                             page + 3u * (numbers >> (2u * KD_LEAF_CORNER_BITS)), &t, &u, &v) &&
+    if (kd_ray_triangle_line(ray, kd_leaf_corner(page, numbers, 0u), kd_leaf_corner(page, numbers, 1u),
+                             kd_leaf_corner(page, numbers, 2u), &t, &u, &v) &&
         t > ray->tmin && kd_hit_precedes(t, block[i], hit)) {
       hit->t = t;
       hit->triangle = block[i];

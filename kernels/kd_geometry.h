@@ -56,6 +56,34 @@ typedef struct KdRay {
   float sx, sy, sz;  /* shear constants */
 } KdRay;
 
+/* The watertight test's axes: kz the first axis of the largest |dir|, kx and ky the next two in
+ * cyclic order, swapped where dir[kz] < 0 so that the winding is kept. The axis and the sign are
+ * a random ray's, so a branch on them is mispredicted half the time. LLVM (PoCL) and GPU
+ * compilers make selects of the conditional form and keep knowing that the axes are 0, 1 or 2;
+ * GCC makes branches of it, so the C++ builds compute the same axes by arithmetic (bench/LOG.md,
+ * "The ray's axes without a branch"). */
+KD_INLINE void kd_ray_axes(KdRay* ray) {
+  const float ax = kd_absf(ray->dir[0]), ay = kd_absf(ray->dir[1]), az = kd_absf(ray->dir[2]);
+#ifdef __OPENCL_VERSION__
+  int kz = ax < ay ? 1 : 0;
+  kz = kd_absf(ray->dir[kz]) < az ? 2 : kz;
+  const int next = kz == 2 ? 0 : kz + 1;
+  const int after = next == 2 ? 0 : next + 1;
+  const int negative = ray->dir[kz] < 0.0f;
+  ray->kx = negative ? after : next;
+  ray->ky = negative ? next : after;
+#else
+  const int y_over_x = ax < ay;
+  const int z_largest = kd_maxf(ax, ay) < az;
+  const int kz = y_over_x + z_largest * (2 - y_over_x);
+  const int negative = ray->dir[kz] < 0.0f;
+  const int kx = kz + 1 + negative, ky = kz + 2 - negative;
+  ray->kx = kx - 3 * (kx >= 3);
+  ray->ky = ky - 3 * (ky >= 3);
+#endif
+  ray->kz = kz;
+}
+
 KD_INLINE float kd_safe_reciprocal(float d) {
   return kd_absf(d) > KD_TINY_DIRECTION ? 1.0f / d : kd_copysignf(KD_HUGE_RECIPROCAL, d);
 }
@@ -76,19 +104,8 @@ KD_HOT_INLINE int kd_ray_setup(KdRay* ray, float ox, float oy, float oz, float d
   ray->inv_dir[0] = kd_safe_reciprocal(dx);
   ray->inv_dir[1] = kd_safe_reciprocal(dy);
   ray->inv_dir[2] = kd_safe_reciprocal(dz);
-  int kz = 0;
-  if (kd_absf(dy) > kd_absf(ray->dir[kz])) kz = 1;
-  if (kd_absf(dz) > kd_absf(ray->dir[kz])) kz = 2;
-  int kx = kz == 2 ? 0 : kz + 1;
-  int ky = kx == 2 ? 0 : kx + 1;
-  if (ray->dir[kz] < 0.0f) {
-    int swap = kx;
-    kx = ky;
-    ky = swap;
-  }
-  ray->kx = kx;
-  ray->ky = ky;
-  ray->kz = kz;
+  kd_ray_axes(ray);
+  const int kx = ray->kx, ky = ray->ky, kz = ray->kz;
   ray->sx = ray->dir[kx] / ray->dir[kz];
   ray->sy = ray->dir[ky] / ray->dir[kz];
   ray->sz = 1.0f / ray->dir[kz];

@@ -12,7 +12,9 @@
 # The reference is REFERENCE (an EXR of the same view) or else a kdrender sobol render of
 # REFERENCE_SPP samples with seed 1000 (slow: about 16x the 64-spp render).
 # usage: bench/sampler.sh [BUILD_DIR] [OUT_DIR]
-#        (env: SCENE=cornell-box RUNS=3 SPP=64 REFERENCE= REFERENCE_SPP=1024 SERIES=1)
+#        (env: SCENE=cornell-box RUNS=3 SPP=64 REFERENCE= REFERENCE_SPP=1024 SERIES=1 DEVICE=)
+# DEVICE names kdrender's device for part 1 (host: `--device host --threads 2`); unset, kdrender
+# picks its own.
 # SERIES=0 skips the speed-vs-error series (part 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -50,6 +52,9 @@ fi
 echo "reference: $REFERENCE"
 "$KDRENDER" $CORNELL -o "$WORK/warm.exr" $VIEW --width 8 --height 8 --spp 1 -q  # warm the program cache
 
+DEVICE_ARGS=""
+if [[ ${DEVICE:-} == host ]]; then DEVICE_ARGS="--device host --threads 2"; elif [[ -n ${DEVICE:-} ]]; then DEVICE_ARGS="--device $DEVICE"; fi
+
 renderers=(sobol independent)
 have_cycles=0 have_mitsuba=0
 if command -v blender > /dev/null && [[ -f $YARDSTICKS/cycles_render.py ]]; then have_cycles=1 && renderers+=(cycles); fi
@@ -62,7 +67,7 @@ run() {
   case $name in
     sobol | independent)
       render_s=$("$KDRENDER" $CORNELL -o "$WORK/$name.exr" $VIEW $SIZE --spp $SPP --seed "$seed" --sampler "$name" \
-        --json | json_field render_seconds) ;;
+        $DEVICE_ARGS --json | json_field render_seconds) ;;
     cycles)
       blender -b --factory-startup --python "$YARDSTICKS/cycles_render.py" -- --obj "$OBJ" --out "$WORK/$name.exr" \
         --spp $SPP --width 256 --height 256 --max-bounces 8 --cam-pos 278,273,-800 --cam-target 278,273,0 \
@@ -77,7 +82,7 @@ run() {
 }
 
 echo
-echo "== $SCENE, $SIZE, $SPP spp, 2 threads; median of $RUNS interleaved runs (seed = run)"
+echo "== $SCENE, $SIZE, $SPP spp, 2 threads, kdrender ${DEVICE_ARGS:-on its default device}; median of $RUNS interleaved runs (seed = run)"
 for ((r = 0; r < RUNS; ++r)); do
   for name in "${renderers[@]}"; do run "$name" "$r"; done
 done

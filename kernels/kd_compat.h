@@ -45,8 +45,9 @@ KD_HOT_INLINE int kd_lowest_bit(kd_u32 bits) { return 31 - (int)clz(bits & (0u -
 #include <cstdint>
 #include <cstring>
 #define KD_INLINE inline
-/* GCC kept the leaf test out of line in the host's path tracer, a call per leaf with the ray in
- * memory (bench/LOG.md, "The leaf test inlined in the host's path tracer"). */
+/* The traversal's inner-loop helpers, inlined as in OpenCL: left to itself, GCC kept the leaf
+ * test out of line in the host's path tracer, a call per leaf with the ray in memory
+ * (bench/LOG.md, "The leaf test inlined in the host's path tracer"). */
 #define KD_HOT_INLINE inline __attribute__((always_inline))
 #define KD_GLOBAL
 #define KD_CONSTANT

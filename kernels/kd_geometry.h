@@ -58,10 +58,11 @@ typedef struct KdRay {
 
 /* The watertight test's axes: kz the first axis of the largest |dir|, kx and ky the next two in
  * cyclic order, swapped where dir[kz] < 0 so that the winding is kept. The axis and the sign are
- * a random ray's, so a branch on them is mispredicted half the time. LLVM (PoCL) and GPU
- * compilers make selects of the conditional form and keep knowing that the axes are 0, 1 or 2;
- * GCC makes branches of it, so the C++ builds compute the same axes by arithmetic (bench/LOG.md,
- * "The ray's axes without a branch"). */
+ * as good as random from ray to ray, so a branch on them is mispredicted half the time. PoCL's
+ * LLVM makes selects of the conditional form, and the arithmetic form cost it 6-13%; GCC makes
+ * branches of the conditional form, so the C++ builds compute the same axes by arithmetic
+ * (bench/LOG.md, "The ray's axes without a branch"). A kernel test holds the two to the same
+ * axes where components tie. */
 KD_INLINE void kd_ray_axes(KdRay* ray) {
   const float ax = kd_absf(ray->dir[0]), ay = kd_absf(ray->dir[1]), az = kd_absf(ray->dir[2]);
 #ifdef __OPENCL_VERSION__

@@ -7,14 +7,17 @@
 # the host build's trace_closest, one thread, on 20000 rays of the same kind: random rays of seed 1,
 # camera rays at 160x125; "-" without valgrind). Compiles bench/embree_trace.cpp itself (needs
 # libembree-dev); the project's CMake never builds it.
-#   BUILD=build RUNS=3 RAYS=1000000 THREADS=2 [MESHES="NAME=PATH ..."] bench/traverse.sh
+#   BUILD=build RUNS=3 RAYS=4000000 THREADS=2 [MESHES="NAME=PATH ..."] bench/traverse.sh
+# RAYS: 4M by default, so that a run on the Cornell box's tree (in cache, about 17M rays a second
+# on 2 cores) lasts a quarter of a second: runs of 1M, 60 ms, moved with the machine's swings
+# (bench/LOG.md, "The ray's axes without a branch").
 # MESHES: corpus paths, or absolute ones (bench/make_meshes.py's, say), each named.
 # BASELINE=other/build adds a "before" kdtrace (another build of kdray) to every run.
 set -euo pipefail
 . "$(dirname "$0")/common.sh"
 baseline="${BASELINE:-}"
 runs="${RUNS:-3}"
-rays="${RAYS:-1000000}"
+rays="${RAYS:-4000000}"
 threads="${THREADS:-2}"
 work="${WORK:-${TMPDIR:-/tmp}/kdray-bench-traverse}"
 meshes=(${MESHES:-cornell=cornell-box/mcguire/CornellBox-Original.obj bunny=bunny/bun_zipper.ply bunny_sub2=large/bunny_sub2.ply})
@@ -49,8 +52,9 @@ for entry in "${meshes[@]}"; do
   tree="$work/$name.kdtree"
   [[ -f "$scene" ]] || "$KDCONVERT" "$(corpus_file "${entry#*=}")" "$scene" --quiet > /dev/null
   readable_by "$BUILD" "$tree" || "$KDBUILD" "$scene" "$tree" --quiet > /dev/null
-  [[ -f "$work/$name.random.rays" ]] ||
-    "$KDTRACE" "$scene" "$tree" --generate random --count "$rays" --seed 1 --write-rays "$work/$name.random.rays" > /dev/null
+  # Named by their count: the work folder is kept between runs, and another RAYS needs its own file.
+  [[ -f "$work/$name.random.$rays.rays" ]] ||
+    "$KDTRACE" "$scene" "$tree" --generate random --count "$rays" --seed 1 --write-rays "$work/$name.random.$rays.rays" > /dev/null
   [[ -f "$work/$name.camera.rays" ]] ||
     "$KDTRACE" "$scene" "$tree" --generate camera --width 1024 --height 768 --write-rays "$work/$name.camera.rays" > /dev/null
   [[ -f "$work/$name.random.small.rays" ]] ||
@@ -59,6 +63,7 @@ for entry in "${meshes[@]}"; do
     "$KDTRACE" "$scene" "$tree" --generate camera --width 160 --height 125 --write-rays "$work/$name.camera.small.rays" > /dev/null
   for kind in random camera; do
     ray_file="$work/$name.$kind.rays"
+    [[ $kind == random ]] && ray_file="$work/$name.random.$rays.rays"
     e=() c=() p=() b=()
     for ((run = 0; run < runs; ++run)); do
       e+=("$("$embree" "$scene" "$ray_file" "$threads" | sed 's/.*: \([0-9.]*\) Mrays.*/\1/')")

@@ -53,8 +53,9 @@ for entry in "${meshes[@]}"; do
   [[ -f "$scene" ]] || "$KDCONVERT" "$(corpus_file "${entry#*=}")" "$scene" --quiet > /dev/null
   readable_by "$BUILD" "$tree" || "$KDBUILD" "$scene" "$tree" --quiet > /dev/null
   # Named by their count: the work folder is kept between runs, and another RAYS needs its own file.
-  [[ -f "$work/$name.random.$rays.rays" ]] ||
-    "$KDTRACE" "$scene" "$tree" --generate random --count "$rays" --seed 1 --write-rays "$work/$name.random.$rays.rays" > /dev/null
+  random_file="$work/$name.random.$rays.rays"
+  [[ -f "$random_file" ]] ||
+    "$KDTRACE" "$scene" "$tree" --generate random --count "$rays" --seed 1 --write-rays "$random_file" > /dev/null
   [[ -f "$work/$name.camera.rays" ]] ||
     "$KDTRACE" "$scene" "$tree" --generate camera --width 1024 --height 768 --write-rays "$work/$name.camera.rays" > /dev/null
   [[ -f "$work/$name.random.small.rays" ]] ||
@@ -62,8 +63,8 @@ for entry in "${meshes[@]}"; do
   [[ -f "$work/$name.camera.small.rays" ]] ||
     "$KDTRACE" "$scene" "$tree" --generate camera --width 160 --height 125 --write-rays "$work/$name.camera.small.rays" > /dev/null
   for kind in random camera; do
-    ray_file="$work/$name.$kind.rays"
-    [[ $kind == random ]] && ray_file="$work/$name.random.$rays.rays"
+    ray_file="$work/$name.camera.rays"
+    [[ $kind == random ]] && ray_file="$random_file"
     e=() c=() p=() b=()
     for ((run = 0; run < runs; ++run)); do
       e+=("$("$embree" "$scene" "$ray_file" "$threads" | sed 's/.*: \([0-9.]*\) Mrays.*/\1/')")

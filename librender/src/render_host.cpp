@@ -73,18 +73,29 @@ class HostRender : public RenderWorker {
 
 }  // namespace
 
-HostPixelsBuild host_pixels_build() {
+HostPixelsBuild host_pixels_build(const PtRenderParams& params) {
   const char* asked = std::getenv("KDRAY_HOST_ISA");
   const bool generic = asked != nullptr && std::string(asked) == "generic";
   if (asked != nullptr && !generic) {
     throw Error("", std::string("KDRAY_HOST_ISA is '") + asked + "': the one value it takes is 'generic'");
+  }
+  const char* lanes = std::getenv("KDRAY_HOST_LANES");
+  const bool lanes_off = lanes != nullptr && std::string(lanes) == "off";
+  if (lanes != nullptr && !lanes_off) {
+    throw Error("", std::string("KDRAY_HOST_LANES is '") + lanes + "': the one value it takes is 'off'");
   }
 #ifdef KDRAY_HOST_PIXELS_HAVE_X86_64_V3
   // The level's features that GCC and clang both name (clang 14 and 15 know no "x86-64-v3"); the
   // CPUs that have them have the rest of it (F16C, LZCNT, MOVBE).
   const bool x86_64_v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") &&
                          __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("fma");
+  if (!generic && x86_64_v3 && !lanes_off && host_pixels_x86_64_v3::paths_in_lanes_apply(params)) {
+    return {host_pixels_x86_64_v3::render_pixels_in_lanes, "x86-64-v3, paths in lanes", true};
+  }
   if (!generic && x86_64_v3) return {host_pixels_x86_64_v3::render_pixels, "x86-64-v3", true};
+#else
+  (void)params;
+  (void)lanes_off;
 #endif
   return {host_pixels_generic::render_pixels, "generic", false};
 }
@@ -98,7 +109,7 @@ std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tre
   const auto start = std::chrono::steady_clock::now();
   SceneArrays arrays = scene_arrays(scene, tree, render.environment.get());
   const PtRenderParams params = render_params(render, arrays);
-  const HostPixelsBuild build = host_pixels_build();
+  const HostPixelsBuild build = host_pixels_build(params);
   auto host = std::make_unique<HostRender>(std::move(arrays), params, device.threads, build.render);
   RenderStats& stats = host->stats;
   stats.device = kHostDevice;

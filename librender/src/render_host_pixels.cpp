@@ -42,6 +42,9 @@
 // The device code, in this file's own namespace: no other file compiles it with these defines.
 namespace {
 #include <kernels/pt_path.h>
+#ifdef KDRAY_HOST_PIXELS_X86_64_V3
+#include "path_lanes.h"
+#endif
 }  // namespace
 
 namespace kdray {
@@ -51,19 +54,35 @@ namespace host_pixels_x86_64_v3 {
 namespace host_pixels_generic {
 #endif
 
-uint64_t render_pixels(const SceneArrays& arrays, const PtRenderParams& pass, uint32_t begin, uint32_t end,
-                       int64_t* film, uint32_t* nonfinite) {
-  const PtRenderParams* params = &pass;  // the name PT_MAKE_SCENE reads
+namespace {
+PtSceneData scene_data(const SceneArrays& arrays, const PtRenderParams* params) {
 #define KD_HOST_GEOMETRY(type, name) const type* name = static_cast<const type*>(arrays.geometry.name.data);
 #define KD_HOST_SHADING(type, name) const type* name = static_cast<const type*>(arrays.name.data);
   PT_SCENE_BUFFERS(KD_HOST_GEOMETRY, KD_HOST_SHADING)
 #undef KD_HOST_GEOMETRY
 #undef KD_HOST_SHADING
-  const PtSceneData scene = PT_MAKE_SCENE();
+  return PT_MAKE_SCENE();
+}
+}  // namespace
+
+uint64_t render_pixels(const SceneArrays& arrays, const PtRenderParams& pass, uint32_t begin, uint32_t end,
+                       int64_t* film, uint32_t* nonfinite) {
+  const PtRenderParams* params = &pass;
+  const PtSceneData scene = scene_data(arrays, params);
   uint64_t rays = 0;
   for (uint32_t pixel = begin; pixel != end; ++pixel) rays += pt_render_pixel(&scene, params, pixel, film, nonfinite);
   return rays;
 }
+
+#ifdef KDRAY_HOST_PIXELS_X86_64_V3
+bool paths_in_lanes_apply(const PtRenderParams& params) { return path_lanes::apply(params); }
+
+uint64_t render_pixels_in_lanes(const SceneArrays& arrays, const PtRenderParams& pass, uint32_t begin, uint32_t end,
+                                int64_t* film, uint32_t* nonfinite) {
+  const PtSceneData scene = scene_data(arrays, &pass);
+  return path_lanes::render(&scene, &pass, begin, end, film, nonfinite);
+}
+#endif
 
 }  // namespace host_pixels_generic or host_pixels_x86_64_v3
 }  // namespace kdray

@@ -34,10 +34,11 @@ inline std::set<std::string> option_defines(const std::string& options) {
 }
 
 // Renders the scene on PoCL and on the host (with `threads`, 0: all cores), in each of the host's
-// builds of the path tracer (the one for this CPU, then the generic one that KDRAY_HOST_ISA
-// names), and expects the same film sums, and the kernel built with exactly the -D options
-// `kernel_defines`. Returns the number of pixels whose radiance is not zero (so a caller can
-// check the scene is lit).
+// builds of the path tracer (the one for this CPU, which takes 8 paths at a time in lanes where
+// the scene is of their kind; the same one path at a time, as KDRAY_HOST_LANES=off asks; the
+// generic one that KDRAY_HOST_ISA names), and expects the same film sums, and the kernel built
+// with exactly the -D options `kernel_defines`. Returns the number of pixels whose radiance is not
+// zero (so a caller can check the scene is lit).
 inline size_t expect_host_matches_kernel(Scene& scene, const RenderSettings& settings,
                                          const std::set<std::string>& kernel_defines, unsigned threads = 0) {
   const KdTree tree = tree_for(scene);
@@ -52,20 +53,32 @@ inline size_t expect_host_matches_kernel(Scene& scene, const RenderSettings& set
   const size_t channels = film.channels.size();
   size_t lit = 0;
   for (size_t i = 0; i < film.sums.size(); i += channels) lit += film.sums[i] || film.sums[i + 1] || film.sums[i + 2];
-  for (const char* build : {"", "generic"}) {
-    if (*build) setenv("KDRAY_HOST_ISA", build, 1);
+  // The paths in lanes render scenes whose kernel has no feature but emission (librender/src/
+  // path_lanes.h): lit by their triangles alone, as any other light is a feature.
+  const bool lanes_kind = kernel_defines == std::set<std::string>{"-DKD_FEATURE_EMISSION"};
+  struct HostBuild {
+    const char* variable;
+    const char* value;
+  };
+  for (const HostBuild& build : {HostBuild{nullptr, nullptr}, HostBuild{"KDRAY_HOST_LANES", "off"},
+                                 HostBuild{"KDRAY_HOST_ISA", "generic"}}) {
+    if (build.variable) setenv(build.variable, build.value, 1);
     DeviceSelection host{kHostDevice};
     host.threads = threads;
     RenderStats stats;
     const Film cpu = render(scene, tree, settings, host, &stats);
-    unsetenv("KDRAY_HOST_ISA");
+    if (build.variable) unsetenv(build.variable);
     EXPECT_EQ(stats.device, kHostDevice);
-    if (*build) {
-      EXPECT_EQ(stats.build_source, std::string("built in, ") + build);
+    const bool x86_64_v3 = stats.build_source.rfind("built in, x86-64-v3", 0) == 0;
+    if (build.variable == nullptr && x86_64_v3) {
+      EXPECT_EQ(stats.build_source, lanes_kind ? "built in, x86-64-v3, paths in lanes" : "built in, x86-64-v3");
+    } else if (build.variable != nullptr && std::string(build.variable) == "KDRAY_HOST_ISA") {
+      EXPECT_EQ(stats.build_source, "built in, generic");
+    } else if (x86_64_v3) {
+      EXPECT_EQ(stats.build_source, "built in, x86-64-v3");
     }
     // The generic build computes each sample value alone, the x86-64-v3 one in lanes.
-    EXPECT_EQ(option_defines(stats.kernel_options).count("-DPT_BOUNCE_BITS_IN_LANES"),
-              stats.build_source == "built in, x86-64-v3" ? 1u : 0u)
+    EXPECT_EQ(option_defines(stats.kernel_options).count("-DPT_BOUNCE_BITS_IN_LANES"), x86_64_v3 ? 1u : 0u)
         << stats.kernel_options;
     EXPECT_EQ(cpu.sums.size(), film.sums.size());
     size_t mismatches = 0;

@@ -23,6 +23,19 @@ TEST(CpuIntegrator, CornellBoxMatchesTheKernelBitForBitOnOneThread) {
   EXPECT_GT(expect_host_matches_kernel(scene, cornell_settings(), {"-DKD_FEATURE_EMISSION"}, 1), 24u * 24u / 2);
 }
 
+// The paths in lanes (librender/src/path_lanes.h) over 8 bounces, Russian roulette's included, with every AOV, on two threads: lanes end and take new samples at every
+// step, and tasks end with lanes empty.
+TEST(CpuIntegrator, CornellBoxInLanesMatchesTheKernelBitForBitWithEveryAov) {
+  Scene scene = import_scene(cornell_obj(), ImportOptions{});
+  RenderSettings settings = cornell_settings();
+  settings.width = settings.height = 40;
+  settings.spp = 5;
+  settings.seed = 3;
+  settings.aov_albedo = settings.aov_normal = settings.aov_depth = true;
+  settings.max_bounces = 8;  // roulette from bounce 4 (kernels/pt_path.h)
+  EXPECT_GT(expect_host_matches_kernel(scene, settings, {"-DKD_FEATURE_EMISSION"}, 2), 40u * 40u / 2);
+}
+
 TEST(CpuIntegrator, CornellBoxWithoutMisMatchesTheKernelBitForBitOnTwoThreads) {
   Scene scene = import_scene(cornell_obj(), ImportOptions{});
   RenderSettings settings = cornell_settings();

@@ -45,6 +45,14 @@ inline f8 vrint(f8 x) { return (f8)_mm256_round_ps((__m256)x, _MM_FROUND_TO_NEAR
 inline f8 vcopysign(f8 magnitude, f8 sign) { return (f8)(((i8)magnitude & 0x7fffffff) | ((i8)sign & (int32_t)0x80000000u)); }
 // (int)x, truncating.
 inline i8 truncate(f8 x) { return (i8)_mm256_cvttps_epi32((__m256)x); }
+// base[index] in the lanes of the mask, 0 in the others (index: 32-bit, signed).
+inline f8 gather(const float* base, i8 index, i8 mask) {
+  return (f8)_mm256_mask_i32gather_ps(_mm256_setzero_ps(), base, (__m256i)index, (__m256)mask, 4);
+}
+inline i8 gather(const int32_t* base, i8 index, i8 mask) {
+  return (i8)_mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(base), (__m256i)index,
+                                         (__m256i)mask, 4);
+}
 // Masks are -1 (true) or 0 per lane, as vector comparisons give them.
 inline bool any(i8 m) { return _mm256_movemask_ps((__m256)m) != 0; }
 // Bit l set where lane l of the mask is true.

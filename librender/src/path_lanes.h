@@ -19,10 +19,12 @@ namespace path_lanes {
 using namespace lane8;
 
 // Whether the lanes render this pass as the scalar path tracer would: no feature but emission
-// (so every material is diffuse or emissive, untextured and opaque), and next-event estimation on
-// the triangle lights alone.
-inline bool apply(const PtRenderParams& params) {
-  return (params.features & ~PT_FEATURE_EMISSION) == 0 && params.light_count > 0 && params.select_triangles == 1.0f;
+// (so every material is diffuse or emissive, untextured and opaque), next-event estimation on the
+// triangle lights alone, and few enough triangles that a corner's float index fits the gathers'
+// 32-bit signed indices.
+inline bool apply(const PtRenderParams& params, size_t triangle_count) {
+  return (params.features & ~PT_FEATURE_EMISSION) == 0 && params.light_count > 0 && params.select_triangles == 1.0f &&
+         triangle_count <= size_t{0x7fffffff} / KD_TRIANGLE_FLOATS;
 }
 
 // The state of the lanes' paths (PtPath's), one array element per lane: what shading reads in
@@ -46,54 +48,35 @@ inline void store3(float* x, float* y, float* z, V3 v) {
   store(y, v.y);
   store(z, v.z);
 }
-// pt_corner of each lane's triangle, for the lanes set in `lanes` (0 in the others).
-inline V3 corners(const float* triangle_vertices, const uint32_t* tri, int lanes, int corner) {
-  alignas(32) float x[kLanes] = {}, y[kLanes] = {}, z[kLanes] = {};
-  for (int l = 0; l < kLanes; ++l)
-    if (lanes >> l & 1) {
-      const float* c = triangle_vertices + KD_TRIANGLE_FLOATS * tri[l] + 3 * corner;
-      x[l] = c[0];
-      y[l] = c[1];
-      z[l] = c[2];
-    }
-  return load3(x, y, z);
+// pt_corner of each lane's triangle, in the lanes of the mask (0 in the others).
+inline V3 corners(const float* triangle_vertices, i8 triangle, i8 lanes, int corner) {
+  const i8 index = triangle * (int32_t)KD_TRIANGLE_FLOATS + 3 * corner;
+  return {gather(triangle_vertices, index, lanes), gather(triangle_vertices + 1, index, lanes),
+          gather(triangle_vertices + 2, index, lanes)};
 }
 
 // pt_path_shade for the live lanes, each with its hit: the lanes still alive after it, and those
 // with a shadow ray to trace, are left in ps.alive and ps.shadow.
 inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* params, const HitRecord* hits) {
-  int live = 0;
-  alignas(32) uint32_t tri[kLanes] = {};
-  alignas(32) float hu[kLanes] = {}, hv[kLanes] = {}, ht[kLanes] = {};
-  alignas(32) int32_t type[kLanes] = {};
-  alignas(32) float bcx[kLanes] = {}, bcy[kLanes] = {}, bcz[kLanes] = {}, ex[kLanes] = {}, ey[kLanes] = {},
-                    ez[kLanes] = {};
   ps.shadow = 0;
-  for (int l = 0; l < kLanes; ++l) {
-    if (!(ps.alive >> l & 1)) continue;
-    if (hits[l].triangle == KD_NO_HIT) continue;
-    live |= 1 << l;
-    tri[l] = hits[l].triangle;
-    hu[l] = hits[l].u;
-    hv[l] = hits[l].v;
-    ht[l] = hits[l].t;
-    const PtMaterial& m = scene->materials[scene->material_ids[tri[l]]];
-    type[l] = (int32_t)m.type;
-    bcx[l] = m.base_color[0];
-    bcy[l] = m.base_color[1];
-    bcz[l] = m.base_color[2];
-    ex[l] = m.emission[0];
-    ey[l] = m.emission[1];
-    ez[l] = m.emission[2];
-  }
+  const i8 lane_bit = {1, 2, 4, 8, 16, 32, 64, 128};
+  const i8 hit_index = {0, 4, 8, 12, 16, 20, 24, 28};  // HitRecord: 4 words
+  const int32_t* hit_words = reinterpret_cast<const int32_t*>(hits);
+  const float* hit_floats = reinterpret_cast<const float*>(hits);
+  const i8 tri = gather(hit_words + 1, hit_index, (lane_bit & ps.alive) != 0);
+  i8 active = ((lane_bit & ps.alive) != 0) & (tri != (int32_t)KD_NO_HIT);
+  const int live = bits(active);
   ps.alive = live;
   if (!live) return;
-  const i8 lane_bit = {1, 2, 4, 8, 16, 32, 64, 128};
-  i8 active = (lane_bit & live) != 0;
-  V3 p0 = corners(scene->triangle_vertices, tri, live, 0);
-  V3 p1 = corners(scene->triangle_vertices, tri, live, 1);
-  V3 p2 = corners(scene->triangle_vertices, tri, live, 2);
-  f8 u = load(hu), v = load(hv), t = load(ht);
+  f8 t = gather(hit_floats, hit_index, active), u = gather(hit_floats + 2, hit_index, active),
+     v = gather(hit_floats + 3, hit_index, active);
+  // PtMaterial: 16 words
+  const i8 material = gather(reinterpret_cast<const int32_t*>(scene->material_ids), tri, active) * 16;
+  const float* material_floats = reinterpret_cast<const float*>(scene->materials);
+  const i8 type = gather(reinterpret_cast<const int32_t*>(scene->materials) + 3, material, active);
+  V3 p0 = corners(scene->triangle_vertices, tri, active, 0);
+  V3 p1 = corners(scene->triangle_vertices, tri, active, 1);
+  V3 p2 = corners(scene->triangle_vertices, tri, active, 2);
   f8 w0 = 1.0f - u - v;
   V3 p = w0 * p0 + u * p1 + v * p2;
   V3 direction = load3(ps.dx, ps.dy, ps.dz), origin = load3(ps.ox, ps.oy, ps.oz);
@@ -102,7 +85,8 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   i8 front = dot(ng, wo) > 0.0f;
   V3 ng_facing = sel(front, ng, -ng);
   V3 n = ng_facing;
-  V3 color = load3(bcx, bcy, bcz);
+  V3 color = {gather(material_floats, material, active), gather(material_floats + 1, material, active),
+              gather(material_floats + 2, material, active)};
   i8 bounce = loadi(ps.bounce);
   {
     int first = bits(active & (bounce == 0));
@@ -113,15 +97,16 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
       if (first >> l & 1) {
         ps.aov[l].albedo = KD_FLOAT3(cx[l], cy[l], cz[l]);
         ps.aov[l].normal = KD_FLOAT3(nx[l], ny[l], nz[l]);
-        ps.aov[l].depth = ht[l];
+        ps.aov[l].depth = t[l];
       }
   }
   V3 beta = load3(ps.tx, ps.ty, ps.tz);
   V3 radiance = load3(ps.rx, ps.ry, ps.rz);
   f8 bsdf_pdf = load(ps.bsdf_pdf);
-  i8 emissive = active & (loadi(type) == (int32_t)PT_EMISSIVE) & front;
+  i8 emissive = active & (type == (int32_t)PT_EMISSIVE) & front;
   if (any(emissive)) {
-    V3 emission = load3(ex, ey, ez);
+    V3 emission = {gather(material_floats + 4, material, emissive), gather(material_floats + 5, material, emissive),
+                   gather(material_floats + 6, material, emissive)};
     f8 weight = splat(1.0f);
     i8 mis = emissive & (bsdf_pdf > 0.0f);
     if (any(mis)) {
@@ -161,11 +146,11 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   }
   // next-event estimation (pt_next_event)
   {
-    const int nee = bits(active);
     i8 ok = active;
-    V3 q0 = corners(scene->triangle_vertices, light_tri, nee, 0);
-    V3 q1 = corners(scene->triangle_vertices, light_tri, nee, 1);
-    V3 q2 = corners(scene->triangle_vertices, light_tri, nee, 2);
+    const i8 light = loadi(reinterpret_cast<const int32_t*>(light_tri));
+    V3 q0 = corners(scene->triangle_vertices, light, ok, 0);
+    V3 q1 = corners(scene->triangle_vertices, light, ok, 1);
+    V3 q2 = corners(scene->triangle_vertices, light, ok, 2);
     V3 scaled_normal = cross(q1 - q0, q2 - q0);
     f8 twice_area = length(scaled_normal);
     V3 light_normal = scaled_normal / twice_area;
@@ -198,15 +183,9 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
     ok &= ~(pdf <= 0.0f) & ~(dot(wi, ng_facing) <= 0.0f);
     const int shadow = bits(ok);
     if (shadow) {
-      alignas(32) float lx[kLanes] = {}, ly[kLanes] = {}, lz[kLanes] = {};
-      for (int l = 0; l < kLanes; ++l)
-        if (shadow >> l & 1) {
-          const PtMaterial& light = scene->materials[scene->material_ids[light_tri[l]]];
-          lx[l] = light.emission[0];
-          ly[l] = light.emission[1];
-          lz[l] = light.emission[2];
-        }
-      V3 emission = load3(lx, ly, lz);
+      const i8 light_material = gather(reinterpret_cast<const int32_t*>(scene->material_ids), light, ok) * 16;
+      V3 emission = {gather(material_floats + 4, light_material, ok), gather(material_floats + 5, light_material, ok),
+                     gather(material_floats + 6, light_material, ok)};
       f8 pick_per_area = params->select_triangles * luminance(emission) * params->light_area_pdf_scale;
       f8 light_pdf = triangle_light_pdf(pick_per_area, 0.5f * twice_area, solid_angle, dist2, cos_light);
       f8 weight = power_heuristic(light_pdf, pdf);

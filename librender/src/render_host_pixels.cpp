@@ -75,7 +75,9 @@ uint64_t render_pixels(const SceneArrays& arrays, const PtRenderParams& pass, ui
 }
 
 #ifdef KDRAY_HOST_PIXELS_X86_64_V3
-bool paths_in_lanes_apply(const PtRenderParams& params) { return path_lanes::apply(params); }
+bool paths_in_lanes_apply(const PtRenderParams& params, size_t triangle_count) {
+  return path_lanes::apply(params, triangle_count);
+}
 
 uint64_t render_pixels_in_lanes(const SceneArrays& arrays, const PtRenderParams& pass, uint32_t begin, uint32_t end,
                                 int64_t* film, uint32_t* nonfinite) {

@@ -37,9 +37,18 @@ struct Paths {
   alignas(32) float scx[kLanes], scy[kLanes], scz[kLanes];
   alignas(32) float bsdf_pdf[kLanes];
   alignas(32) int32_t bounce[kLanes];
-  PtPath aov[kLanes];  // pixel, sample, hash, first-hit AOVs
+  PtPath path[kLanes];  // what is read one lane at a time: pixel, sample, its hash, first-hit AOVs
   int alive = 0, shadow = 0;  // bit per lane
 };
+
+// The words shade() gathers: a HitRecord's t, triangle, u and v, a PtMaterial's base colour, type
+// and emission.
+static_assert(sizeof(HitRecord) == 16 && KD_OFFSETOF(HitRecord, t) == 0 && KD_OFFSETOF(HitRecord, triangle) == 4 &&
+                  KD_OFFSETOF(HitRecord, u) == 8 && KD_OFFSETOF(HitRecord, v) == 12,
+              "HitRecord: 4 words t, triangle, u, v");
+static_assert(sizeof(PtMaterial) == 16 * 4 && KD_OFFSETOF(PtMaterial, base_color) == 0 &&
+                  KD_OFFSETOF(PtMaterial, type) == 3 * 4 && KD_OFFSETOF(PtMaterial, emission) == 4 * 4,
+              "PtMaterial: 16 words, base colour at 0, type at 3, emission at 4");
 
 // The lanes' float3 from, and to, its coordinates' arrays.
 inline V3 load3(const float* x, const float* y, const float* z) { return {load(x), load(y), load(z)}; }
@@ -95,9 +104,9 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
     store3(nx, ny, nz, n);
     for (int l = 0; l < kLanes; ++l)
       if (first >> l & 1) {
-        ps.aov[l].albedo = KD_FLOAT3(cx[l], cy[l], cz[l]);
-        ps.aov[l].normal = KD_FLOAT3(nx[l], ny[l], nz[l]);
-        ps.aov[l].depth = t[l];
+        ps.path[l].albedo = KD_FLOAT3(cx[l], cy[l], cz[l]);
+        ps.path[l].normal = KD_FLOAT3(nx[l], ny[l], nz[l]);
+        ps.path[l].depth = t[l];
       }
   }
   V3 beta = load3(ps.tx, ps.ty, ps.tz);
@@ -127,7 +136,7 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   const int sampled = bits(active);
   for (int l = 0; l < kLanes; ++l)
     if (sampled >> l & 1) {
-      const PtBounceSamples samples = pt_bounce_samples(params->sampler, ps.aov[l].sample_hash, ps.aov[l].sample,
+      const PtBounceSamples samples = pt_bounce_samples(params->sampler, ps.path[l].sample_hash, ps.path[l].sample,
                                                         PT_BOUNCE_DIMS((uint32_t)ps.bounce[l]));
       if (ps.bounce[l] >= (int32_t)PT_ROULETTE_START) roulette[l] = pt_bounce_sample(&samples, PT_DIM_ROULETTE);
       float2 pick = pt_bounce_sample2(&samples, PT_DIM_LIGHT_PICK);
@@ -215,7 +224,7 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
 
 // pt_path_begin into lane l.
 inline void begin(Paths& ps, int l, const PtRenderParams* params, uint32_t pixel, uint32_t sample) {
-  PtPath& path = ps.aov[l];
+  PtPath& path = ps.path[l];
   pt_path_begin(&path, params, pixel, sample);
   ps.ox[l] = path.origin.x, ps.oy[l] = path.origin.y, ps.oz[l] = path.origin.z;
   ps.dx[l] = path.direction.x, ps.dy[l] = path.direction.y, ps.dz[l] = path.direction.z;
@@ -228,7 +237,7 @@ inline void begin(Paths& ps, int l, const PtRenderParams* params, uint32_t pixel
 
 // pt_path_accumulate of lane l's path, into its pixel's film sums.
 inline void accumulate(Paths& ps, int l, const PtRenderParams* params, int64_t* film, uint32_t* nonfinite) {
-  PtPath& path = ps.aov[l];
+  PtPath& path = ps.path[l];
   path.radiance = KD_FLOAT3(ps.rx[l], ps.ry[l], ps.rz[l]);
   long sums[PT_MAX_FILM_CHANNELS] = {};
   pt_path_accumulate(&path, params, sums, nonfinite);

@@ -15,19 +15,20 @@
 #define KD_MATH_H
 
 #include "kd_compat.h"
+#include "kd_lane.h"
 #include "kd_vector.h"
 
 #define KD_PI_F 3.14159274f     /* pi rounded to float */
 #define KD_PI_2_F 1.57079637f   /* pi / 2 rounded to float */
 #define KD_PI_4_F 0.785398163f  /* pi / 4 rounded to float */
 
-KD_INLINE float kd_dot(float3 a, float3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-KD_INLINE float3 kd_cross(float3 a, float3 b) {
-  return KD_FLOAT3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+KD_LANE_FN kd_lane kd_dot(kd_lane3 a, kd_lane3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+KD_LANE_FN kd_lane3 kd_cross(kd_lane3 a, kd_lane3 b) {
+  return KD_LANE3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
-KD_INLINE float kd_length(float3 v) { return sqrt(kd_dot(v, v)); }
-KD_INLINE float kd_rsqrt(float x) { return 1.0f / sqrt(x); }
-KD_INLINE float3 kd_normalize(float3 v) { return v * kd_rsqrt(kd_dot(v, v)); }
+KD_LANE_FN kd_lane kd_length(kd_lane3 v) { return sqrt(kd_dot(v, v)); }
+KD_LANE_FN kd_lane kd_rsqrt(kd_lane x) { return 1.0f / sqrt(x); }
+KD_LANE_FN kd_lane3 kd_normalize(kd_lane3 v) { return v * kd_rsqrt(kd_dot(v, v)); }
 /* a + (b - a) t, OpenCL's definition of mix. */
 KD_INLINE float3 kd_mix3(float3 a, float3 b, float t) { return a + (b - a) * t; }
 KD_INLINE float4 kd_mix4(float4 a, float4 b, float t) {
@@ -38,18 +39,18 @@ KD_INLINE float4 kd_mix4(float4 a, float4 b, float t) {
  * pi/2, subtracted in three parts (Cody and Waite): 1.5703125 and 0x1.fb4p-12 have so few bits
  * that k times them is exact for |k| < 2^13, so r keeps full precision for |x| up to about 1e4
  * (the path tracer passes angles within [-4 pi, 4 pi]). */
-KD_INLINE void kd_sincos(float x, float* s, float* c) {
-  float k = rint(x * 0.636619747f);
-  float r = ((x - k * 1.5703125f) - k * 0x1.fb4p-12f) - k * 0x1.4442d2p-24f;
-  float r2 = r * r;
-  float sin_r = r + r * r2 * ((-1.9515295891e-4f * r2 + 8.3321608736e-3f) * r2 - 1.6666654611e-1f);
-  float cos_r = 1.0f - 0.5f * r2 + r2 * r2 * ((2.443315711809948e-5f * r2 - 1.388731625493765e-3f) * r2 +
-                                              4.166664568298827e-2f);
-  int quadrant = (int)k & 3;
-  float sin_x = (quadrant & 1) ? cos_r : sin_r;
-  float cos_x = (quadrant & 1) ? sin_r : cos_r;
-  *s = (quadrant & 2) ? -sin_x : sin_x;
-  *c = (quadrant == 1 || quadrant == 2) ? -cos_x : cos_x;
+KD_LANE_FN void kd_sincos(kd_lane x, kd_lane* s, kd_lane* c) {
+  kd_lane k = rint(x * 0.636619747f);
+  kd_lane r = ((x - k * 1.5703125f) - k * 0x1.fb4p-12f) - k * 0x1.4442d2p-24f;
+  kd_lane r2 = r * r;
+  kd_lane sin_r = r + r * r2 * ((-1.9515295891e-4f * r2 + 8.3321608736e-3f) * r2 - 1.6666654611e-1f);
+  kd_lane cos_r = 1.0f - 0.5f * r2 + r2 * r2 * ((2.443315711809948e-5f * r2 - 1.388731625493765e-3f) * r2 +
+                                                4.166664568298827e-2f);
+  KD_LANE_INT quadrant = kd_lane_to_int(k) & 3;
+  kd_lane sin_x = kd_select((quadrant & 1) != 0, cos_r, sin_r);
+  kd_lane cos_x = kd_select((quadrant & 1) != 0, sin_r, cos_r);
+  *s = kd_select((quadrant & 2) != 0, -sin_x, sin_x);
+  *c = kd_select((quadrant == 1) | (quadrant == 2), -cos_x, cos_x);
 }
 KD_INLINE float kd_sin(float x) {
   float s, c;
@@ -80,26 +81,24 @@ KD_INLINE float kd_acos(float x) {
 }
 
 /* atan(a) for a in [0, 1]: above tan(pi/8) through atan(a) = pi/4 + atan((a - 1) / (a + 1)). */
-KD_INLINE float kd_atan_unit(float a) {
-  float base = 0.0f;
-  if (a > 0.414213562f) {
-    a = (a - 1.0f) / (a + 1.0f);
-    base = KD_PI_4_F;
-  }
-  float z = a * a;
+KD_LANE_FN kd_lane kd_atan_unit(kd_lane a) {
+  KD_LANE_MASK reduced = a > 0.414213562f;
+  a = kd_select(reduced, (a - 1.0f) / (a + 1.0f), a);
+  kd_lane base = kd_select(reduced, (kd_lane)KD_PI_4_F, (kd_lane)0.0f);
+  kd_lane z = a * a;
   return base + ((((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z - 3.33329491539e-1f) *
                      z * a +
                  a);
 }
 /* atan2(y, x) from the atan of min(|x|, |y|) / max(|x|, |y|), moved to its octant; +-0 when
  * both are 0 (whatever the sign of x), NaN when either is NaN. */
-KD_INLINE float kd_atan2(float y, float x) {
-  float ax = fabs(x), ay = fabs(y);
-  float hi = fmax(ax, ay), lo = fmin(ax, ay);
-  float r = hi > 0.0f ? kd_atan_unit(lo / hi) : 0.0f;
-  if (ay > ax) r = KD_PI_2_F - r;
-  if (x < 0.0f) r = KD_PI_F - r;
-  return x == x && y == y ? copysign(r, y) : x + y;
+KD_LANE_FN kd_lane kd_atan2(kd_lane y, kd_lane x) {
+  kd_lane ax = fabs(x), ay = fabs(y);
+  kd_lane hi = fmax(ax, ay), lo = fmin(ax, ay);
+  kd_lane r = kd_select(hi > 0.0f, kd_atan_unit(lo / hi), (kd_lane)0.0f);
+  r = kd_select(ay > ax, KD_PI_2_F - r, r);
+  r = kd_select(x < 0.0f, KD_PI_F - r, r);
+  return kd_select((x == x) & (y == y), copysign(r, y), x + y);
 }
 
 #endif /* KD_MATH_H */

@@ -50,10 +50,34 @@ KD_INLINE float fmin(float a, float b) {
 struct float2 {
   float x, y;
 };
-/* 16 bytes, as on OpenCL devices, so structs holding float3 have the kernel's size. */
-struct float3 {
-  float x, y, z, unused = 0.0f;
+/* A 3-vector of T. float3 is kd_vec3<float>: 16 bytes, as on OpenCL devices, so structs holding
+ * float3 have the kernel's size. The host's lanes (librender/src/lane8.h) make one of 8-float
+ * vectors for the device code's lane functions (kernels/kd_lane.h). The operators are friends, so
+ * a scalar operand converts to T; a scalar operand stands for a vector of copies of itself, as in
+ * OpenCL C. */
+template <typename T>
+struct kd_vec3 {
+  T x, y, z, unused = T();
+  friend KD_INLINE kd_vec3 operator+(kd_vec3 a, kd_vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+  friend KD_INLINE kd_vec3 operator-(kd_vec3 a, kd_vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+  friend KD_INLINE kd_vec3 operator*(kd_vec3 a, kd_vec3 b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+  friend KD_INLINE kd_vec3 operator/(kd_vec3 a, kd_vec3 b) { return {a.x / b.x, a.y / b.y, a.z / b.z}; }
+  friend KD_INLINE kd_vec3 operator-(kd_vec3 a) { return {-a.x, -a.y, -a.z}; }
+  friend KD_INLINE kd_vec3 operator+(kd_vec3 a, T s) { return {a.x + s, a.y + s, a.z + s}; }
+  friend KD_INLINE kd_vec3 operator+(T s, kd_vec3 a) { return {s + a.x, s + a.y, s + a.z}; }
+  friend KD_INLINE kd_vec3 operator-(kd_vec3 a, T s) { return {a.x - s, a.y - s, a.z - s}; }
+  friend KD_INLINE kd_vec3 operator-(T s, kd_vec3 a) { return {s - a.x, s - a.y, s - a.z}; }
+  friend KD_INLINE kd_vec3 operator*(kd_vec3 a, T s) { return {a.x * s, a.y * s, a.z * s}; }
+  friend KD_INLINE kd_vec3 operator*(T s, kd_vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
+  friend KD_INLINE kd_vec3 operator/(kd_vec3 a, T s) { return {a.x / s, a.y / s, a.z / s}; }
+  friend KD_INLINE kd_vec3 operator/(T s, kd_vec3 a) { return {s / a.x, s / a.y, s / a.z}; }
+  friend KD_INLINE kd_vec3& operator+=(kd_vec3& a, kd_vec3 b) { return a = a + b; }
+  friend KD_INLINE kd_vec3& operator-=(kd_vec3& a, kd_vec3 b) { return a = a - b; }
+  friend KD_INLINE kd_vec3& operator*=(kd_vec3& a, kd_vec3 b) { return a = a * b; }
+  friend KD_INLINE kd_vec3& operator*=(kd_vec3& a, T s) { return a = a * s; }
+  friend KD_INLINE kd_vec3& operator/=(kd_vec3& a, T s) { return a = a / s; }
 };
+typedef kd_vec3<float> float3;
 struct float4 {
   float x, y, z, w;
 };
@@ -67,26 +91,6 @@ KD_INLINE float3 kd_splat3(float s) { return float3{s, s, s, 0.0f}; }
 KD_INLINE float2 operator+(float2 a, float2 b) { return {a.x + b.x, a.y + b.y}; }
 KD_INLINE float2 operator-(float2 a, float2 b) { return {a.x - b.x, a.y - b.y}; }
 KD_INLINE float2 operator*(float s, float2 a) { return {s * a.x, s * a.y}; }
-
-KD_INLINE float3 operator+(float3 a, float3 b) { return KD_FLOAT3(a.x + b.x, a.y + b.y, a.z + b.z); }
-KD_INLINE float3 operator-(float3 a, float3 b) { return KD_FLOAT3(a.x - b.x, a.y - b.y, a.z - b.z); }
-KD_INLINE float3 operator*(float3 a, float3 b) { return KD_FLOAT3(a.x * b.x, a.y * b.y, a.z * b.z); }
-KD_INLINE float3 operator/(float3 a, float3 b) { return KD_FLOAT3(a.x / b.x, a.y / b.y, a.z / b.z); }
-KD_INLINE float3 operator-(float3 a) { return KD_FLOAT3(-a.x, -a.y, -a.z); }
-/* A scalar operand stands for a vector of copies of itself, as in OpenCL C. */
-KD_INLINE float3 operator+(float3 a, float s) { return a + kd_splat3(s); }
-KD_INLINE float3 operator+(float s, float3 a) { return kd_splat3(s) + a; }
-KD_INLINE float3 operator-(float3 a, float s) { return a - kd_splat3(s); }
-KD_INLINE float3 operator-(float s, float3 a) { return kd_splat3(s) - a; }
-KD_INLINE float3 operator*(float3 a, float s) { return a * kd_splat3(s); }
-KD_INLINE float3 operator*(float s, float3 a) { return kd_splat3(s) * a; }
-KD_INLINE float3 operator/(float3 a, float s) { return a / kd_splat3(s); }
-KD_INLINE float3 operator/(float s, float3 a) { return kd_splat3(s) / a; }
-KD_INLINE float3& operator+=(float3& a, float3 b) { return a = a + b; }
-KD_INLINE float3& operator-=(float3& a, float3 b) { return a = a - b; }
-KD_INLINE float3& operator*=(float3& a, float3 b) { return a = a * b; }
-KD_INLINE float3& operator*=(float3& a, float s) { return a = a * s; }
-KD_INLINE float3& operator/=(float3& a, float s) { return a = a / s; }
 
 KD_INLINE float4 operator+(float4 a, float4 b) { return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w}; }
 KD_INLINE float4 operator*(float s, float4 a) { return {s * a.x, s * a.y, s * a.z, s * a.w}; }

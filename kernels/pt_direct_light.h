@@ -80,7 +80,9 @@ KD_INLINE void pt_next_event(PtPath* path, const PtSceneData* scene, KD_GLOBAL c
     bary = pt_barycentrics(p + t * wi - q0, q1 - q0, q2 - q0);
 #endif
   } else {
-    bary = pt_sample_triangle(u, pick_v.y);
+    float b1, b2;
+    pt_sample_triangle(u, pick_v.y, &b1, &b2);
+    bary = KD_FLOAT2(b1, b2);
     float3 to_light = q0 + bary.x * (q1 - q0) + bary.y * (q2 - q0) - p;
     dist2 = kd_dot(to_light, to_light);
     if (!(dist2 > 0.0f)) return;

@@ -3,16 +3,18 @@
 // closest hits of the live paths one after another (kernels/kd_traverse.h), shades all 8 at once
 // (pt_path_shade's parts for that scene kind: the hit point, emission with MIS, Russian roulette,
 // next-event estimation on the triangle lights, the Lambertian BSDF sample), then traces their
-// shadow rays; a path that ends is added to the film and its lane takes the next sample. Each
-// lane computes what pt_path_shade computes for its path, bit for bit, so the film is the scalar
-// path tracer's and the kernel's (tests/render/cpu_integrator.h compares them). Sample values,
-// the light pick's search and a path's start and film sums stay scalar, lane by lane.
+// shadow rays; a path that ends is added to the film and its lane takes the next sample. The
+// shading calls the device code's lane functions (kernels/kd_lane.h) with 8-float lanes
+// (lane8.h), so each lane computes what pt_path_shade computes for its path, bit for bit, and the
+// film is the scalar path tracer's and the kernel's (tests/render/cpu_integrator.h compares them).
+// Sample values, the light pick's search and a path's start and film sums stay scalar, lane by
+// lane.
 //
 // Compiled into the x86-64-v3 build of render_host_pixels.cpp, inside its namespace after the
 // device code, whose functions it calls.
 #pragma once
 
-#include "lane8_sampling.h"
+#include "lane8.h"
 
 namespace path_lanes {
 
@@ -51,88 +53,84 @@ static_assert(sizeof(PtMaterial) == 16 * 4 && KD_OFFSETOF(PtMaterial, base_color
               "PtMaterial: 16 words, base colour at 0, type at 3, emission at 4");
 
 // The lanes' float3 from, and to, its coordinates' arrays.
-inline V3 load3(const float* x, const float* y, const float* z) { return {load(x), load(y), load(z)}; }
-inline void store3(float* x, float* y, float* z, V3 v) {
+inline Float8x3 load3(const float* x, const float* y, const float* z) { return {load(x), load(y), load(z)}; }
+inline void store3(float* x, float* y, float* z, Float8x3 v) {
   store(x, v.x);
   store(y, v.y);
   store(z, v.z);
 }
 // pt_corner of each lane's triangle, in the lanes of the mask (0 in the others).
-inline V3 corners(const float* triangle_vertices, i8 triangle, i8 lanes, int corner) {
-  const i8 index = triangle * (int32_t)KD_TRIANGLE_FLOATS + 3 * corner;
+inline Float8x3 corners(const float* triangle_vertices, Int8 triangle, Mask8 lanes, int corner) {
+  const Int8 index = triangle * (int32_t)KD_TRIANGLE_FLOATS + 3 * corner;
   return {gather(triangle_vertices, index, lanes), gather(triangle_vertices + 1, index, lanes),
           gather(triangle_vertices + 2, index, lanes)};
+}
+// Three consecutive floats of each lane's record (`words` floats each, numbered by `record`) from
+// float `first` on, in the lanes of the mask.
+inline Float8x3 gather3(const float* base, Int8 record, int words, int first, Mask8 lanes) {
+  const Int8 index = record * words;
+  return {gather(base + first, index, lanes), gather(base + first + 1, index, lanes),
+          gather(base + first + 2, index, lanes)};
 }
 
 // pt_path_shade for the live lanes, each with its hit: the lanes still alive after it, and those
 // with a shadow ray to trace, are left in ps.alive and ps.shadow.
 inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* params, const HitRecord* hits) {
   ps.shadow = 0;
-  const i8 lane_bit = {1, 2, 4, 8, 16, 32, 64, 128};
-  const i8 hit_index = {0, 4, 8, 12, 16, 20, 24, 28};  // HitRecord: 4 words
-  const int32_t* hit_words = reinterpret_cast<const int32_t*>(hits);
+  const Int8 hit_record = Int8(IntVector{0, 1, 2, 3, 4, 5, 6, 7});
   const float* hit_floats = reinterpret_cast<const float*>(hits);
-  const i8 tri = gather(hit_words + 1, hit_index, (lane_bit & ps.alive) != 0);
-  i8 active = ((lane_bit & ps.alive) != 0) & (tri != (int32_t)KD_NO_HIT);
-  const int live = bits(active);
-  ps.alive = live;
-  if (!live) return;
-  f8 t = gather(hit_floats, hit_index, active), u = gather(hit_floats + 2, hit_index, active),
-     v = gather(hit_floats + 3, hit_index, active);
-  // PtMaterial: 16 words
-  const i8 material = gather(reinterpret_cast<const int32_t*>(scene->material_ids), tri, active) * 16;
+  const Int8 tri = gather(reinterpret_cast<const int32_t*>(hits) + 1, hit_record * 4, lanes_of(ps.alive));
+  Mask8 active = lanes_of(ps.alive) & (tri != (int32_t)KD_NO_HIT);
+  ps.alive = bits(active);
+  if (!ps.alive) return;
+  const Float8 t = gather(hit_floats, hit_record * 4, active);
+  const Float8 u = gather(hit_floats + 2, hit_record * 4, active), v = gather(hit_floats + 3, hit_record * 4, active);
+  const Int8 material = gather(reinterpret_cast<const int32_t*>(scene->material_ids), tri, active);
   const float* material_floats = reinterpret_cast<const float*>(scene->materials);
-  const i8 type = gather(reinterpret_cast<const int32_t*>(scene->materials) + 3, material, active);
-  V3 p0 = corners(scene->triangle_vertices, tri, active, 0);
-  V3 p1 = corners(scene->triangle_vertices, tri, active, 1);
-  V3 p2 = corners(scene->triangle_vertices, tri, active, 2);
-  f8 w0 = 1.0f - u - v;
-  V3 p = w0 * p0 + u * p1 + v * p2;
-  V3 direction = load3(ps.dx, ps.dy, ps.dz), origin = load3(ps.ox, ps.oy, ps.oz);
-  V3 wo = -direction;
-  V3 ng = normalize(cross(p1 - p0, p2 - p0));
-  i8 front = dot(ng, wo) > 0.0f;
-  V3 ng_facing = sel(front, ng, -ng);
-  V3 n = ng_facing;
-  V3 color = {gather(material_floats, material, active), gather(material_floats + 1, material, active),
-              gather(material_floats + 2, material, active)};
-  i8 bounce = loadi(ps.bounce);
-  {
-    int first = bits(active & (bounce == 0));
-    alignas(32) float cx[kLanes], cy[kLanes], cz[kLanes], nx[kLanes], ny[kLanes], nz[kLanes];
-    store3(cx, cy, cz, color);
-    store3(nx, ny, nz, n);
-    for (int l = 0; l < kLanes; ++l)
-      if (first >> l & 1) {
-        ps.path[l].albedo = KD_FLOAT3(cx[l], cy[l], cz[l]);
-        ps.path[l].normal = KD_FLOAT3(nx[l], ny[l], nz[l]);
-        ps.path[l].depth = t[l];
-      }
-  }
-  V3 beta = load3(ps.tx, ps.ty, ps.tz);
-  V3 radiance = load3(ps.rx, ps.ry, ps.rz);
-  f8 bsdf_pdf = load(ps.bsdf_pdf);
-  i8 emissive = active & (type == (int32_t)PT_EMISSIVE) & front;
-  if (any(emissive)) {
-    V3 emission = {gather(material_floats + 4, material, emissive), gather(material_floats + 5, material, emissive),
-                   gather(material_floats + 6, material, emissive)};
-    f8 weight = splat(1.0f);
-    i8 mis = emissive & (bsdf_pdf > 0.0f);
-    if (any(mis)) {
-      V3 a, b, c;
-      f8 solid_angle = spherical_solid_angle(mis, origin, p0, p1, p2, &a, &b, &c);
-      f8 pick_per_area = params->select_triangles * luminance(emission) * params->light_area_pdf_scale;
-      f8 light_pdf = triangle_light_pdf(pick_per_area, 0.5f * length(cross(p1 - p0, p2 - p0)), solid_angle, t * t,
-                                        dot(ng, wo));
-      weight = mis ? power_heuristic(bsdf_pdf, light_pdf) : weight;
+  const Int8 type = gather(reinterpret_cast<const int32_t*>(scene->materials) + 3, material * 16, active);
+  const Float8x3 p0 = corners(scene->triangle_vertices, tri, active, 0);
+  const Float8x3 p1 = corners(scene->triangle_vertices, tri, active, 1);
+  const Float8x3 p2 = corners(scene->triangle_vertices, tri, active, 2);
+  const Float8 w0 = 1.0f - u - v;
+  const Float8x3 p = w0 * p0 + u * p1 + v * p2;
+  const Float8x3 origin = load3(ps.ox, ps.oy, ps.oz);
+  const Float8x3 wo = -load3(ps.dx, ps.dy, ps.dz);
+  const Float8x3 ng = kd_normalize(kd_cross(p1 - p0, p2 - p0));
+  const Mask8 front = kd_dot(ng, wo) > 0.0f;
+  const Float8x3 ng_facing = kd_select(front, ng, -ng);
+  const Float8x3 n = ng_facing;
+  const Float8x3 color = gather3(material_floats, material, 16, 0, active);
+  const Int8 bounce = load(ps.bounce);
+  const int first_hits = bits(active & (bounce == 0));
+  for (int l = 0; l < kLanes; ++l)
+    if (first_hits >> l & 1) {
+      ps.path[l].albedo = KD_FLOAT3(color.x[l], color.y[l], color.z[l]);
+      ps.path[l].normal = KD_FLOAT3(n.x[l], n.y[l], n.z[l]);
+      ps.path[l].depth = t[l];
     }
-    radiance = sel(emissive, radiance + beta * emission * weight, radiance);
+  Float8x3 beta = load3(ps.tx, ps.ty, ps.tz);
+  Float8x3 radiance = load3(ps.rx, ps.ry, ps.rz);
+  const Float8 bsdf_pdf = load(ps.bsdf_pdf);
+  const Mask8 emissive = active & (type == (int32_t)PT_EMISSIVE) & front;
+  if (kd_any(emissive)) {
+    const Float8x3 emission = gather3(material_floats, material, 16, 4, emissive);
+    Float8 weight = 1.0f;
+    const Mask8 mis = emissive & (bsdf_pdf > 0.0f);
+    if (kd_any(mis)) {
+      Float8x3 a, b, c;
+      const Float8 solid_angle = pt_spherical_solid_angle(origin, p0, p1, p2, &a, &b, &c);
+      const Float8 pick_per_area = params->select_triangles * pt_luminance(emission) * params->light_area_pdf_scale;
+      const Float8 light_pdf = pt_triangle_light_pdf(pick_per_area, 0.5f * kd_length(kd_cross(p1 - p0, p2 - p0)),
+                                                     solid_angle, t * t, kd_dot(ng, wo));
+      weight = kd_select(mis, pt_power_heuristic(bsdf_pdf, light_pdf), weight);
+    }
+    radiance = kd_select(emissive, radiance + beta * emission * weight, radiance);
   }
-  active &= bounce <= (int32_t)(params->max_bounces < 0x7fffffffu ? params->max_bounces : 0x7fffffffu);
-  // sample values, per lane
+  active = active & (bounce <= (int32_t)(params->max_bounces < 0x7fffffffu ? params->max_bounces : 0x7fffffffu));
+  // sample values and the light pick, lane by lane
   alignas(32) float roulette[kLanes] = {}, pick_u[kLanes] = {}, pick_v[kLanes] = {}, bsdf_u[kLanes] = {},
                     bsdf_v[kLanes] = {};
-  alignas(32) uint32_t light_tri[kLanes] = {};
+  alignas(32) int32_t light_triangle[kLanes] = {};
   const int sampled = bits(active);
   for (int l = 0; l < kLanes; ++l)
     if (sampled >> l & 1) {
@@ -141,84 +139,82 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
       if (ps.bounce[l] >= (int32_t)PT_ROULETTE_START) roulette[l] = pt_bounce_sample(&samples, PT_DIM_ROULETTE);
       float2 pick = pt_bounce_sample2(&samples, PT_DIM_LIGHT_PICK);
       pick_v[l] = pick.y;
-      light_tri[l] = pt_pick_light(scene->lights, params->light_count, &pick.x);
+      light_triangle[l] = (int32_t)pt_pick_light(scene->lights, params->light_count, &pick.x);
       pick_u[l] = pick.x;
       float2 bsdf = pt_bounce_sample2(&samples, PT_DIM_BSDF_U);
       bsdf_u[l] = bsdf.x;
       bsdf_v[l] = bsdf.y;
     }
-  i8 roulette_lanes = active & (bounce >= (int32_t)PT_ROULETTE_START);
-  if (any(roulette_lanes)) {
-    f8 survive = vmin(vsqrt(max3(beta)), splat(1.0f));
-    active &= ~(roulette_lanes & (load(roulette) >= survive));
-    beta = sel(roulette_lanes, beta / survive, beta);
+  const Mask8 roulette_lanes = active & (bounce >= (int32_t)PT_ROULETTE_START);
+  if (kd_any(roulette_lanes)) {
+    const Float8 survive = fmin(sqrt(pt_max3(beta)), 1.0f);
+    active = active & !(roulette_lanes & (load(roulette) >= survive));
+    beta = kd_select(roulette_lanes, beta / survive, beta);
   }
   // next-event estimation (pt_next_event)
   {
-    i8 ok = active;
-    const i8 light = loadi(reinterpret_cast<const int32_t*>(light_tri));
-    V3 q0 = corners(scene->triangle_vertices, light, ok, 0);
-    V3 q1 = corners(scene->triangle_vertices, light, ok, 1);
-    V3 q2 = corners(scene->triangle_vertices, light, ok, 2);
-    V3 scaled_normal = cross(q1 - q0, q2 - q0);
-    f8 twice_area = length(scaled_normal);
-    V3 light_normal = scaled_normal / twice_area;
-    V3 a, b, c;
-    f8 lu = load(pick_u), lv = load(pick_v);
-    f8 solid_angle = spherical_solid_angle(ok, p, q0, q1, q2, &a, &b, &c);
-    i8 spherical = solid_angle > 0.0f;
-    V3 wi = splat3(0.0f);
-    f8 dist2 = splat(0.0f);
-    if (any(spherical)) {
-      wi = sample_spherical_triangle(a, b, c, solid_angle, lu, lv);
-      f8 tl = dot(q0 - p, light_normal) / dot(wi, light_normal);
-      ok &= ~spherical | ((tl > 0.0f) & (tl < INFINITY));
-      dist2 = tl * tl;
+    Mask8 ok = active;
+    const Int8 light = load(light_triangle);
+    const Float8x3 q0 = corners(scene->triangle_vertices, light, ok, 0);
+    const Float8x3 q1 = corners(scene->triangle_vertices, light, ok, 1);
+    const Float8x3 q2 = corners(scene->triangle_vertices, light, ok, 2);
+    const Float8x3 scaled_normal = kd_cross(q1 - q0, q2 - q0);
+    const Float8 twice_area = kd_length(scaled_normal);
+    const Float8x3 light_normal = scaled_normal / twice_area;
+    const Float8 light_u = load(pick_u), light_v = load(pick_v);
+    Float8x3 a, b, c;
+    const Float8 solid_angle = pt_spherical_solid_angle(p, q0, q1, q2, &a, &b, &c);
+    const Mask8 spherical = solid_angle > 0.0f;
+    Float8x3 wi = {};
+    Float8 dist2 = 0.0f;
+    if (kd_any(spherical)) {
+      wi = pt_sample_spherical_triangle(a, b, c, solid_angle, light_u, light_v);
+      const Float8 distance = kd_dot(q0 - p, light_normal) / kd_dot(wi, light_normal);
+      ok = ok & ((!spherical) | ((distance > 0.0f) & (distance < INFINITY)));
+      dist2 = distance * distance;
     }
-    if (any(ok & ~spherical)) {
-      f8 s = vsqrt(lu);
-      f8 bx = s * (1.0f - lv), by = s * lv;
-      V3 to_light = q0 + bx * (q1 - q0) + by * (q2 - q0) - p;
-      f8 d2 = dot(to_light, to_light);
-      ok &= spherical | (d2 > 0.0f);
-      wi = sel(spherical, wi, to_light * rsqrt(d2));
-      dist2 = spherical ? dist2 : d2;
+    if (kd_any(ok & !spherical)) {
+      Float8 b1, b2;
+      pt_sample_triangle(light_u, light_v, &b1, &b2);
+      const Float8x3 to_light = q0 + b1 * (q1 - q0) + b2 * (q2 - q0) - p;
+      const Float8 area_dist2 = kd_dot(to_light, to_light);
+      ok = ok & (spherical | (area_dist2 > 0.0f));
+      wi = kd_select(spherical, wi, to_light * kd_rsqrt(area_dist2));
+      dist2 = kd_select(spherical, dist2, area_dist2);
     }
-    f8 cos_light = -dot(light_normal, wi);
-    ok &= ~(cos_light <= 0.0f);
-    f8 cos_i = dot(n, wi);
-    f8 pdf = cos_i <= 0.0f ? splat(0.0f) : cos_i * PT_INV_PI;
-    V3 f_cos = sel(cos_i <= 0.0f, splat3(0.0f), color * (cos_i * PT_INV_PI));
-    ok &= ~(pdf <= 0.0f) & ~(dot(wi, ng_facing) <= 0.0f);
-    const int shadow = bits(ok);
-    if (shadow) {
-      const i8 light_material = gather(reinterpret_cast<const int32_t*>(scene->material_ids), light, ok) * 16;
-      V3 emission = {gather(material_floats + 4, light_material, ok), gather(material_floats + 5, light_material, ok),
-                     gather(material_floats + 6, light_material, ok)};
-      f8 pick_per_area = params->select_triangles * luminance(emission) * params->light_area_pdf_scale;
-      f8 light_pdf = triangle_light_pdf(pick_per_area, 0.5f * twice_area, solid_angle, dist2, cos_light);
-      f8 weight = power_heuristic(light_pdf, pdf);
-      V3 shadow_origin = offset_origin(p, ng_facing);
-      V3 target = offset_origin(p + vsqrt(dist2) * wi, light_normal);
+    const Float8 cos_light = -kd_dot(light_normal, wi);
+    ok = ok & !(cos_light <= 0.0f);
+    // pt_bsdf_eval's Lambertian lobe
+    const Float8 cos_i = kd_dot(n, wi);
+    const Float8 pdf = kd_select(cos_i <= 0.0f, Float8(0.0f), cos_i * PT_INV_PI);
+    const Float8x3 f_cos = kd_select(cos_i <= 0.0f, Float8x3{}, color * (cos_i * PT_INV_PI));
+    ok = ok & !(pdf <= 0.0f) & !(kd_dot(wi, ng_facing) <= 0.0f);
+    ps.shadow = bits(ok);
+    if (ps.shadow) {
+      const Int8 light_material = gather(reinterpret_cast<const int32_t*>(scene->material_ids), light, ok);
+      const Float8x3 emission = gather3(material_floats, light_material, 16, 4, ok);
+      const Float8 pick_per_area = params->select_triangles * pt_luminance(emission) * params->light_area_pdf_scale;
+      const Float8 light_pdf = pt_triangle_light_pdf(pick_per_area, 0.5f * twice_area, solid_angle, dist2, cos_light);
+      const Float8 weight = pt_power_heuristic(light_pdf, pdf);
+      const Float8x3 shadow_origin = pt_offset_origin(p, ng_facing);
+      const Float8x3 target = pt_offset_origin(p + sqrt(dist2) * wi, light_normal);
       store3(ps.sox, ps.soy, ps.soz, shadow_origin);
       store3(ps.ssx, ps.ssy, ps.ssz, target - shadow_origin);
       store3(ps.scx, ps.scy, ps.scz, beta * f_cos * emission * (weight / light_pdf));
-      ps.shadow = shadow;
     }
   }
   // the BSDF sample (pt_bsdf_sample's Lambertian lobe)
-  V3 wi = sample_cosine(n, load(bsdf_u), load(bsdf_v));
-  f8 pdf = vmax(dot(n, wi), splat(0.0f)) * PT_INV_PI;
-  V3 weight = sel(pdf > 0.0f, color, splat3(0.0f));
-  f8 side = dot(wi, ng_facing);
-  active &= ~((max3(weight) <= 0.0f) | (side <= 0.0f));
-  store3(ps.tx, ps.ty, ps.tz, sel(active, beta * weight, beta));
+  const Float8x3 wi = pt_sample_cosine(n, load(bsdf_u), load(bsdf_v));
+  const Float8 pdf = fmax(kd_dot(n, wi), 0.0f) * PT_INV_PI;
+  const Float8x3 weight = kd_select(pdf > 0.0f, color, Float8x3{});
+  const Float8 side = kd_dot(wi, ng_facing);
+  active = active & !((pt_max3(weight) <= 0.0f) | (side <= 0.0f));
+  store3(ps.tx, ps.ty, ps.tz, kd_select(active, beta * weight, beta));
   store3(ps.rx, ps.ry, ps.rz, radiance);
   store(ps.bsdf_pdf, pdf);
-  store3(ps.ox, ps.oy, ps.oz, offset_origin(p, ng_facing));
+  store3(ps.ox, ps.oy, ps.oz, pt_offset_origin(p, ng_facing));
   store3(ps.dx, ps.dy, ps.dz, wi);
-  i8 next = bounce + 1;
-  std::memcpy(ps.bounce, &next, sizeof next);
+  store(ps.bounce, bounce + 1);
   ps.alive = bits(active);
 }
 

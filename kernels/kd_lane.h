@@ -2,9 +2,9 @@
  * paths side by side in vector lanes (librender/src/lane8.h, librender/src/path_lanes.h).
  *
  * A function declared KD_LANE_FN takes kd_lane where it means a float and kd_lane3 where it means
- * a float3 (made with KD_LANE3). In OpenCL C they are float and float3. In C++ the function is a template over the
- * lane type: the scalar code instantiates it with float (kd_lane3 is then float3), the host's
- * lanes with 8 floats, and each lane computes the float instantiation's bits.
+ * a float3 (made with KD_LANE3). In OpenCL C they are float and float3. In C++ the function is a
+ * template over the lane type: the scalar code instantiates it with float (kd_lane3 is then
+ * float3), the host's lanes with 8 floats, and each lane computes the float instantiation's bits.
  *
  * So a lane function has no branch on a value: comparisons give masks (KD_LANE_MASK), combined
  * with & | and !; kd_select(mask, a, b) picks a or b per lane; an early exit is taken when no lane

@@ -266,7 +266,8 @@ inline uint64_t render(const PtSceneData* scene, const PtRenderParams* params, u
     for (int l = 0; l < kLanes; ++l)
       if (ps.shadow >> l & 1) {
         ++rays;
-        RayRecord ray = pt_ray(KD_FLOAT3(ps.sox[l], ps.soy[l], ps.soz[l]), KD_FLOAT3(ps.ssx[l], ps.ssy[l], ps.ssz[l]), 1.0f);
+        RayRecord ray =
+            pt_ray(KD_FLOAT3(ps.sox[l], ps.soy[l], ps.soz[l]), KD_FLOAT3(ps.ssx[l], ps.ssy[l], ps.ssz[l]), 1.0f);
         if (!kd_intersect_any(&scene->kd, ray)) {
           ps.rx[l] += ps.scx[l];
           ps.ry[l] += ps.scy[l];

@@ -1,5 +1,6 @@
 // The host renderer's inner loop (render_host_pixels.h), compiled twice from this one file: as
-// is, and with KDRAY_HOST_PIXELS_X86_64_V3 defined and -march=x86-64-v3 (librender/CMakeLists.txt).
+// is, and with KDRAY_HOST_PIXELS_X86_64_V3 defined and -march=x86-64-v3 (librender/CMakeLists.txt),
+// where it also renders 8 paths at a time in AVX2 lanes for the scenes path_lanes.h can.
 //
 // Features. An OpenCL program is built for its scene's feature set (KD_FEATURE_*), which keeps
 // PoCL's compile short and the kernel small. Here the integrator is compiled with every feature
@@ -55,6 +56,7 @@ namespace host_pixels_generic {
 #endif
 
 namespace {
+// The scene's arrays as the device code reads them (`params` is the name PT_MAKE_SCENE reads).
 PtSceneData scene_data(const SceneArrays& arrays, const PtRenderParams* params) {
 #define KD_HOST_GEOMETRY(type, name) const type* name = static_cast<const type*>(arrays.geometry.name.data);
 #define KD_HOST_SHADING(type, name) const type* name = static_cast<const type*>(arrays.name.data);

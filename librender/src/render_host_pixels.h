@@ -25,11 +25,11 @@ struct HostPixelsBuild {
   bool bounce_bits_in_lanes;  // PT_BOUNCE_BITS_IN_LANES (kernels/pt_rng.h): the AVX2 build's
 };
 
-// The build for this CPU and a pass like `params` over `triangle_count` triangles: x86-64-v3 where the CPU has it, with 8 paths
-// at a time in lanes where the scene is of the kind they render (path_lanes.h), unless the
-// environment asks for another to compare them: KDRAY_HOST_ISA=generic for the generic build,
-// KDRAY_HOST_LANES=off for the x86-64-v3 build one path at a time. Throws kdray::Error for any
-// other value of those variables.
+// The build for this CPU and a pass like `params` over `triangle_count` triangles: x86-64-v3
+// where the CPU has it, with 8 paths at a time in lanes where the scene is of the kind they
+// render (path_lanes.h), unless the environment asks for another to compare them:
+// KDRAY_HOST_ISA=generic for the generic build, KDRAY_HOST_LANES=off for the x86-64-v3 build one
+// path at a time. Throws kdray::Error for any other value of those variables.
 HostPixelsBuild host_pixels_build(const PtRenderParams& params, size_t triangle_count);
 
 namespace host_pixels_generic {

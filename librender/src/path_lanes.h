@@ -20,12 +20,16 @@ namespace path_lanes {
 
 using namespace lane8;
 
-// Whether the lanes render this pass as the scalar path tracer would: no feature but emission
-// (so every material is diffuse or emissive, untextured and opaque), next-event estimation on the
+// The features whose surfaces the lanes shade: diffuse and emissive ones in lanes, the mirror,
+// rough conductor and glass ones lane by lane with pt_path_shade (their paths stay in their lanes).
+#define PATH_LANES_FEATURES (PT_FEATURE_EMISSION | PT_FEATURE_MIRROR | PT_FEATURE_GLOSSY | PT_FEATURE_GLASS)
+
+// Whether the lanes render this pass as the scalar path tracer would: no feature but those (so
+// every material is untextured and opaque, with geometric normals), next-event estimation on the
 // triangle lights alone, and few enough triangles that a corner's float index fits the gathers'
 // 32-bit signed indices.
 inline bool apply(const PtRenderParams& params, size_t triangle_count) {
-  return (params.features & ~PT_FEATURE_EMISSION) == 0 && params.light_count > 0 && params.select_triangles == 1.0f &&
+  return (params.features & ~PATH_LANES_FEATURES) == 0 && params.light_count > 0 && params.select_triangles == 1.0f &&
          triangle_count <= size_t{0x7fffffff} / KD_TRIANGLE_FLOATS;
 }
 
@@ -73,8 +77,46 @@ inline Float8x3 gather3(const float* base, Int8 record, int words, int first, Ma
           gather(base + first + 2, index, lanes)};
 }
 
-// pt_path_shade for the live lanes, each with its hit: the lanes still alive after it, and those
-// with a shadow ray to trace, are left in ps.alive and ps.shadow.
+// pt_path_shade itself for the lanes set in `lanes`, one after another: the lanes' state copied
+// into their PtPath, shaded, and copied back by shaded_lane_by_lane once shade() has stored its own.
+inline void shade_lane_by_lane(Paths& ps, int lanes, const PtSceneData* scene, const PtRenderParams* params,
+                               const HitRecord* hits) {
+  for (int l = 0; l < kLanes; ++l) {
+    if (!(lanes >> l & 1)) continue;
+    PtPath& path = ps.path[l];
+    path.origin = KD_FLOAT3(ps.ox[l], ps.oy[l], ps.oz[l]);
+    path.direction = KD_FLOAT3(ps.dx[l], ps.dy[l], ps.dz[l]);
+    path.throughput = KD_FLOAT3(ps.tx[l], ps.ty[l], ps.tz[l]);
+    path.radiance = KD_FLOAT3(ps.rx[l], ps.ry[l], ps.rz[l]);
+    path.bsdf_pdf = ps.bsdf_pdf[l];
+    path.bounce = (uint32_t)ps.bounce[l];
+    path.alive = 1;
+    pt_path_shade(&path, scene, params, hits[l]);
+  }
+}
+inline void shaded_lane_by_lane(Paths& ps, int lanes) {
+  for (int l = 0; l < kLanes; ++l) {
+    if (!(lanes >> l & 1)) continue;
+    const PtPath& path = ps.path[l];
+    ps.ox[l] = path.origin.x, ps.oy[l] = path.origin.y, ps.oz[l] = path.origin.z;
+    ps.dx[l] = path.direction.x, ps.dy[l] = path.direction.y, ps.dz[l] = path.direction.z;
+    ps.tx[l] = path.throughput.x, ps.ty[l] = path.throughput.y, ps.tz[l] = path.throughput.z;
+    ps.rx[l] = path.radiance.x, ps.ry[l] = path.radiance.y, ps.rz[l] = path.radiance.z;
+    ps.bsdf_pdf[l] = path.bsdf_pdf;
+    ps.bounce[l] = (int32_t)path.bounce;
+    ps.alive = (ps.alive & ~(1 << l)) | (path.alive ? 1 << l : 0);
+    if (!path.shadow_pending) continue;
+    ps.shadow |= 1 << l;
+    ps.sox[l] = path.shadow_origin.x, ps.soy[l] = path.shadow_origin.y, ps.soz[l] = path.shadow_origin.z;
+    ps.ssx[l] = path.shadow_span.x, ps.ssy[l] = path.shadow_span.y, ps.ssz[l] = path.shadow_span.z;
+    ps.scx[l] = path.shadow_contribution.x, ps.scy[l] = path.shadow_contribution.y;
+    ps.scz[l] = path.shadow_contribution.z;
+  }
+}
+
+// pt_path_shade for the live lanes, each with its hit: in lanes for diffuse and emissive surfaces,
+// lane by lane for the others. The lanes still alive after it, and those with a shadow ray to
+// trace, are left in ps.alive and ps.shadow.
 inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* params, const HitRecord* hits) {
   ps.shadow = 0;
   const Int8 hit_record = Int8(IntVector{0, 1, 2, 3, 4, 5, 6, 7});
@@ -88,6 +130,14 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   const Int8 material = gather(reinterpret_cast<const int32_t*>(scene->material_ids), tri, active);
   const float* material_floats = reinterpret_cast<const float*>(scene->materials);
   const Int8 type = gather(reinterpret_cast<const int32_t*>(scene->materials) + 3, material * 16, active);
+  const int by_lane = bits(active & (type != (int32_t)PT_DIFFUSE) & (type != (int32_t)PT_EMISSIVE));
+  shade_lane_by_lane(ps, by_lane, scene, params, hits);
+  active = active & !lanes_of(by_lane);
+  if (!kd_any(active)) {
+    ps.alive = 0;
+    shaded_lane_by_lane(ps, by_lane);
+    return;
+  }
   const Float8x3 p0 = corners(scene->triangle_vertices, tri, active, 0);
   const Float8x3 p1 = corners(scene->triangle_vertices, tri, active, 1);
   const Float8x3 p2 = corners(scene->triangle_vertices, tri, active, 2);
@@ -216,6 +266,7 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   store3(ps.dx, ps.dy, ps.dz, wi);
   store(ps.bounce, bounce + 1);
   ps.alive = bits(active);
+  shaded_lane_by_lane(ps, by_lane);
 }
 
 // pt_path_begin into lane l.

@@ -36,6 +36,32 @@ TEST(CpuIntegrator, CornellBoxInLanesMatchesTheKernelBitForBitWithEveryAov) {
   EXPECT_GT(expect_host_matches_kernel(scene, settings, {"-DKD_FEATURE_EMISSION"}, 2), 40u * 40u / 2);
 }
 
+// The lanes with surfaces they hand to pt_path_shade lane by lane: of the Cornell box's diffuse
+// triangles, every fourth made a mirror, the next a rough conductor, the next glass.
+TEST(CpuIntegrator, CornellBoxWithSpecularSurfacesInLanesMatchesTheKernelBitForBit) {
+  Scene scene = import_scene(cornell_obj(), ImportOptions{});
+  const uint32_t specular = uint32_t(scene.materials.size());
+  for (MaterialType type : {MaterialType::Mirror, MaterialType::RoughConductor, MaterialType::Dielectric}) {
+    Material material;
+    material.type = type;
+    material.roughness = 0.1f;
+    scene.materials.push_back(material);
+  }
+  uint32_t diffuse = 0;
+  for (uint32_t& id : scene.material_ids) {
+    if (id >= specular || scene.materials[id].type != MaterialType::Diffuse) continue;
+    const uint32_t kind = diffuse++ % 4;  // 0 stays diffuse
+    if (kind) id = specular + kind - 1;
+  }
+  RenderSettings settings = cornell_settings();
+  settings.width = settings.height = 32;
+  settings.spp = 16;
+  EXPECT_GT(expect_host_matches_kernel(
+                scene, settings, {"-DKD_FEATURE_EMISSION", "-DKD_FEATURE_MIRROR", "-DKD_FEATURE_GLOSSY", "-DKD_FEATURE_GLASS"},
+                2),
+            32u * 32u / 2);
+}
+
 TEST(CpuIntegrator, CornellBoxWithoutMisMatchesTheKernelBitForBitOnTwoThreads) {
   Scene scene = import_scene(cornell_obj(), ImportOptions{});
   RenderSettings settings = cornell_settings();

@@ -1,14 +1,14 @@
-// The host's path tracer 8 paths at a time in AVX2 lanes, for scenes of diffuse and emissive
-// triangles lit by their emissive triangles alone (paths_in_lanes_apply): each step traces the
-// closest hits of the live paths one after another (kernels/kd_traverse.h), shades all 8 at once
-// (pt_path_shade's parts for that scene kind: the hit point, emission with MIS, Russian roulette,
-// next-event estimation on the triangle lights, the Lambertian BSDF sample), then traces their
-// shadow rays; a path that ends is added to the film and its lane takes the next sample. The
-// shading calls the device code's lane functions (kernels/kd_lane.h) with 8-float lanes
-// (lane8.h), so each lane computes what pt_path_shade computes for its path, bit for bit, and the
-// film is the scalar path tracer's and the kernel's (tests/render/cpu_integrator.h compares them).
-// Sample values, the light pick's search and a path's start and film sums stay scalar, lane by
-// lane.
+// The host's path tracer 8 paths at a time in AVX2 lanes, for scenes lit by their emissive
+// triangles alone (apply() below): each step traces the closest hits of the live paths one after
+// another (kernels/kd_traverse.h), shades the diffuse and emissive hits all at once
+// (pt_path_shade's parts for them: the hit point, emission with MIS, Russian roulette, next-event
+// estimation on the triangle lights, the Lambertian BSDF sample) and the mirror, rough conductor
+// and glass hits with pt_path_shade lane by lane, then traces their shadow rays; a path that ends
+// is added to the film and its lane takes the next sample. The shading in lanes calls the device
+// code's lane functions (kernels/kd_lane.h) with 8-float lanes (lane8.h), so each lane computes
+// what pt_path_shade computes for its path, bit for bit, and the film is the scalar path tracer's
+// and the kernel's (tests/render/cpu_integrator.h compares them). Sample values, the light pick's
+// search and a path's start and film sums stay scalar, lane by lane.
 //
 // Compiled into the x86-64-v3 build of render_host_pixels.cpp, inside its namespace after the
 // device code, whose functions it calls.

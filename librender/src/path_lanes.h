@@ -1,14 +1,15 @@
 // The host's path tracer 8 paths at a time in AVX2 lanes, for scenes lit by their emissive
 // triangles alone (apply() below): each step traces the closest hits of the live paths one after
 // another (kernels/kd_traverse.h), shades the diffuse and emissive hits all at once
-// (pt_path_shade's parts for them: the hit point, emission with MIS, Russian roulette, next-event
-// estimation on the triangle lights, the Lambertian BSDF sample) and the mirror, rough conductor
-// and glass hits with pt_path_shade lane by lane, then traces their shadow rays; a path that ends
-// is added to the film and its lane takes the next sample. The shading in lanes calls the device
-// code's lane functions (kernels/kd_lane.h) with 8-float lanes (lane8.h), so each lane computes
-// what pt_path_shade computes for its path, bit for bit, and the film is the scalar path tracer's
-// and the kernel's (tests/render/cpu_integrator.h compares them). Sample values, the light pick's
-// search and a path's start and film sums stay scalar, lane by lane.
+// (pt_path_shade's parts for them: the hit point and its smooth normal, emission with MIS,
+// Russian roulette, next-event estimation on the triangle lights, the Lambertian BSDF sample) and
+// the mirror, rough conductor and glass hits with pt_path_shade lane by lane, then traces their
+// shadow rays; a path that ends is added to the film and its lane takes the next sample. The
+// shading in lanes calls the device code's lane functions (kernels/kd_lane.h) with 8-float lanes
+// (lane8.h), so each lane computes what pt_path_shade computes for its path, bit for bit, and the
+// film is the scalar path tracer's and the kernel's (tests/render/cpu_integrator.h compares them).
+// Sample values, the light pick's search and a path's start and film sums stay scalar, lane by
+// lane.
 //
 // Compiled into the x86-64-v3 build of render_host_pixels.cpp, inside its namespace after the
 // device code, whose functions it calls.
@@ -20,17 +21,19 @@ namespace path_lanes {
 
 using namespace lane8;
 
-// The features whose surfaces the lanes shade: diffuse and emissive ones in lanes, the mirror,
-// rough conductor and glass ones lane by lane with pt_path_shade (their paths stay in their lanes).
-#define PATH_LANES_FEATURES (PT_FEATURE_EMISSION | PT_FEATURE_MIRROR | PT_FEATURE_GLOSSY | PT_FEATURE_GLASS)
+// The features the lanes render: smooth normals, and surfaces diffuse and emissive (in lanes),
+// mirror, rough conductor and glass (with pt_path_shade lane by lane; their paths stay in their
+// lanes).
+#define PATH_LANES_FEATURES \
+  (PT_FEATURE_EMISSION | PT_FEATURE_NORMALS | PT_FEATURE_MIRROR | PT_FEATURE_GLOSSY | PT_FEATURE_GLASS)
 
 // Whether the lanes render this pass as the scalar path tracer would: no feature but those (so
-// every material is untextured and opaque, with geometric normals), next-event estimation on the
-// triangle lights alone, and few enough triangles that a corner's float index fits the gathers'
-// 32-bit signed indices.
-inline bool apply(const PtRenderParams& params, size_t triangle_count) {
+// every material is untextured and opaque), next-event estimation on the triangle lights alone,
+// and no float array longer than the gathers' 32-bit signed indices reach (`gathered_floats`: the
+// longest, in floats or indices).
+inline bool apply(const PtRenderParams& params, size_t gathered_floats) {
   return (params.features & ~PATH_LANES_FEATURES) == 0 && params.light_count > 0 && params.select_triangles == 1.0f &&
-         triangle_count <= size_t{0x7fffffff} / KD_TRIANGLE_FLOATS;
+         gathered_floats <= size_t{0x7fffffff};
 }
 
 // The state of the lanes' paths (PtPath's), one array element per lane: what shading reads in
@@ -148,7 +151,16 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   const Float8x3 ng = kd_normalize(kd_cross(p1 - p0, p2 - p0));
   const Mask8 front = kd_dot(ng, wo) > 0.0f;
   const Float8x3 ng_facing = kd_select(front, ng, -ng);
-  const Float8x3 n = ng_facing;
+  Float8x3 n = ng_facing;
+  if (PT_USES(params, PT_FEATURE_NORMALS)) {
+    const int32_t* indices = reinterpret_cast<const int32_t*>(scene->indices);
+    const Int8 corner = tri * 3;
+    const Float8x3 ns = w0 * gather3(scene->normals, gather(indices, corner, active), 3, 0, active) +
+                        u * gather3(scene->normals, gather(indices, corner + 1, active), 3, 0, active) +
+                        v * gather3(scene->normals, gather(indices, corner + 2, active), 3, 0, active);
+    const Float8x3 unit = kd_normalize(ns);
+    n = kd_select(kd_dot(ns, ns) > 0.0f, kd_select(kd_dot(unit, ng_facing) < 0.0f, -unit, unit), ng_facing);
+  }
   const Float8x3 color = gather3(material_floats, material, 16, 0, active);
   const Int8 bounce = load(ps.bounce);
   const int first_hits = bits(active & (bounce == 0));

@@ -16,6 +16,8 @@
 
 #include <kernels/pt_types.h>
 
+#include <algorithm>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -73,7 +75,7 @@ class HostRender : public RenderWorker {
 
 }  // namespace
 
-HostPixelsBuild host_pixels_build(const PtRenderParams& params, size_t triangle_count) {
+HostPixelsBuild host_pixels_build(const PtRenderParams& params, size_t gathered_floats) {
   const char* asked = std::getenv("KDRAY_HOST_ISA");
   const bool generic = asked != nullptr && std::string(asked) == "generic";
   if (asked != nullptr && !generic) {
@@ -89,13 +91,13 @@ HostPixelsBuild host_pixels_build(const PtRenderParams& params, size_t triangle_
   // CPUs that have them have the rest of it (F16C, LZCNT, MOVBE).
   const bool x86_64_v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") &&
                          __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("fma");
-  if (!generic && x86_64_v3 && !lanes_off && host_pixels_x86_64_v3::paths_in_lanes_apply(params, triangle_count)) {
+  if (!generic && x86_64_v3 && !lanes_off && host_pixels_x86_64_v3::paths_in_lanes_apply(params, gathered_floats)) {
     return {host_pixels_x86_64_v3::render_pixels_in_lanes, "x86-64-v3, paths in lanes", true};
   }
   if (!generic && x86_64_v3) return {host_pixels_x86_64_v3::render_pixels, "x86-64-v3", true};
 #else
   (void)params;
-  (void)triangle_count;
+  (void)gathered_floats;
   (void)lanes_off;
 #endif
   return {host_pixels_generic::render_pixels, "generic", false};
@@ -110,7 +112,9 @@ std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tre
   const auto start = std::chrono::steady_clock::now();
   SceneArrays arrays = scene_arrays(scene, tree, render.environment.get());
   const PtRenderParams params = render_params(render, arrays);
-  const HostPixelsBuild build = host_pixels_build(params, scene.triangle_count());
+  // the longest arrays the paths in lanes gather from: the triangles' corners, the vertex normals
+  const size_t gathered_floats = std::max(arrays.triangle_vertices.bytes, arrays.normals.bytes) / sizeof(float);
+  const HostPixelsBuild build = host_pixels_build(params, gathered_floats);
   auto host = std::make_unique<HostRender>(std::move(arrays), params, device.threads, build.render);
   RenderStats& stats = host->stats;
   stats.device = kHostDevice;

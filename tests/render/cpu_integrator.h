@@ -54,9 +54,9 @@ inline size_t expect_host_matches_kernel(Scene& scene, const RenderSettings& set
   size_t lit = 0;
   for (size_t i = 0; i < film.sums.size(); i += channels) lit += film.sums[i] || film.sums[i + 1] || film.sums[i + 2];
   // The paths in lanes render scenes lit by their triangles alone whose kernel has no feature but
-  // emission, mirrors, rough conductors and glass (librender/src/path_lanes.h).
-  const std::set<std::string> lanes_features = {"-DKD_FEATURE_EMISSION", "-DKD_FEATURE_MIRROR", "-DKD_FEATURE_GLOSSY",
-                                                "-DKD_FEATURE_GLASS"};
+  // emission, smooth normals, mirrors, rough conductors and glass (librender/src/path_lanes.h).
+  const std::set<std::string> lanes_features = {"-DKD_FEATURE_EMISSION", "-DKD_FEATURE_NORMALS", "-DKD_FEATURE_MIRROR",
+                                                "-DKD_FEATURE_GLOSSY", "-DKD_FEATURE_GLASS"};
   const bool lanes_kind = kernel_defines.count("-DKD_FEATURE_EMISSION") &&
                           std::includes(lanes_features.begin(), lanes_features.end(), kernel_defines.begin(),
                                         kernel_defines.end());

@@ -210,31 +210,40 @@ inline pt_lanes_u32 pt_lanes_reverse_bits(pt_lanes_u32 x) {
 #define PT_LANES_REVERSE_BITS(x) PT_REVERSE_BITS_STEPS(x)
 #endif
 #endif
+/* pt_hashed_bits of each lane's (sample_hash, index, dimension) into the lanes `bits`, from the
+ * index with its bits reversed (pt_reverse_bits): the 8 values of one bounce
+ * (pt_bounce_bits_in_lanes), or one value of 8 paths (the host's paths in lanes,
+ * librender/src/path_lanes.h). A statement macro, as the steps above, so that no function passes
+ * 32-byte vectors where the target has no AVX. */
+#define PT_HASHED_BITS_IN_LANES(bits, sampler, sample_hash, reversed_index, dimension)      \
+  do {                                                                                   \
+    if ((sampler) == PT_SAMPLER_INDEPENDENT) {                                           \
+      bits = (sample_hash) ^ (dimension);                                                \
+      PT_HASH32_STEPS(bits);                                                             \
+    } else {                                                                             \
+      pt_lanes_u32 pair_seed = (sample_hash) ^ ((dimension) >> 1);                       \
+      PT_HASH32_STEPS(pair_seed);                                                        \
+      /* pt_shuffled_index */                                                            \
+      pt_lanes_u32 shuffle_seed = pair_seed ^ 0x68e31da4u;                               \
+      PT_HASH32_STEPS(shuffle_seed);                                                     \
+      pt_lanes_u32 shuffled = (reversed_index);                                          \
+      PT_LAINE_KARRAS_STEPS(shuffled, shuffle_seed);                                     \
+      PT_LANES_REVERSE_BITS(shuffled);                                                   \
+      /* pt_scrambled_sobol: coordinate 0 in the even dimensions, 1 in the odd ones */   \
+      const pt_lanes_u32 coordinate = (dimension) & 1u;                                  \
+      pt_lanes_u32 sobol1 = shuffled;                                                    \
+      PT_SOBOL1_REVERSED_STEPS(sobol1);                                                  \
+      bits = shuffled ^ ((sobol1 ^ shuffled) & (0u - coordinate));                       \
+      pt_lanes_u32 scramble_seed = pair_seed ^ (0xb5297a4du + coordinate);               \
+      PT_HASH32_STEPS(scramble_seed);                                                    \
+      PT_LAINE_KARRAS_STEPS(bits, scramble_seed);                                        \
+      PT_LANES_REVERSE_BITS(bits);                                                       \
+    }                                                                                    \
+  } while (0)
 KD_INLINE PtBounceBits pt_bounce_bits_in_lanes(kd_u32 sampler, kd_u32 sample_hash, kd_u32 index, kd_u32 first_dimension) {
-  const pt_lanes_u32 dimension = PT_LANES_U32(0u, 1u, 2u, 3u, 4u, 5u, 6u, 7u) + first_dimension;
   pt_lanes_u32 bits;
-  if (sampler == PT_SAMPLER_INDEPENDENT) {
-    bits = sample_hash ^ dimension;
-    PT_HASH32_STEPS(bits);
-  } else {
-    pt_lanes_u32 pair_seed = sample_hash ^ (dimension >> 1);
-    PT_HASH32_STEPS(pair_seed);
-    /* pt_shuffled_index */
-    pt_lanes_u32 shuffle_seed = pair_seed ^ 0x68e31da4u;
-    PT_HASH32_STEPS(shuffle_seed);
-    pt_lanes_u32 shuffled = PT_LANES_SPLAT(pt_reverse_bits(index));
-    PT_LAINE_KARRAS_STEPS(shuffled, shuffle_seed);
-    PT_LANES_REVERSE_BITS(shuffled);
-    /* pt_scrambled_sobol: coordinate 0 in the even lanes, 1 in the odd ones */
-    const pt_lanes_u32 coordinate = dimension & 1u;
-    pt_lanes_u32 sobol1 = shuffled;
-    PT_SOBOL1_REVERSED_STEPS(sobol1);
-    bits = shuffled ^ ((sobol1 ^ shuffled) & (0u - coordinate));
-    pt_lanes_u32 scramble_seed = pair_seed ^ (0xb5297a4du + coordinate);
-    PT_HASH32_STEPS(scramble_seed);
-    PT_LAINE_KARRAS_STEPS(bits, scramble_seed);
-    PT_LANES_REVERSE_BITS(bits);
-  }
+  PT_HASHED_BITS_IN_LANES(bits, sampler, PT_LANES_SPLAT(sample_hash), PT_LANES_SPLAT(pt_reverse_bits(index)),
+                          PT_LANES_U32(0u, 1u, 2u, 3u, 4u, 5u, 6u, 7u) + first_dimension);
   PtBounceBits out;
   PT_LANES_STORE(bits, out.bits);
   return out;

@@ -46,6 +46,7 @@ struct Paths {
   alignas(32) float scx[kLanes], scy[kLanes], scz[kLanes];
   alignas(32) float bsdf_pdf[kLanes];
   alignas(32) int32_t bounce[kLanes];
+  alignas(32) uint32_t sample_hash[kLanes], sample[kLanes];  // the path's, as in its PtPath
   PtPath path[kLanes];  // what is read one lane at a time: pixel, sample, its hash, first-hit AOVs
   int alive = 0, shadow = 0;  // bit per lane
 };
@@ -189,28 +190,28 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
     radiance = kd_select(emissive, radiance + beta * emission * weight, radiance);
   }
   active = active & (bounce <= (int32_t)(params->max_bounces < 0x7fffffffu ? params->max_bounces : 0x7fffffffu));
-  // sample values and the light pick, lane by lane
-  alignas(32) float roulette[kLanes] = {}, pick_u[kLanes] = {}, pick_v[kLanes] = {}, bsdf_u[kLanes] = {},
-                    bsdf_v[kLanes] = {};
+  // the bounce's sample values (pt_path_samples), a value of the 8 paths at a time
+  const UintVector sample_hash = (UintVector)load(ps.sample_hash).v, first_dimension = (UintVector)(bounce * 16 + 2).v;
+  UintVector reversed_index = (UintVector)load(ps.sample).v;
+  PT_LANES_REVERSE_BITS(reversed_index);
+  auto value = [&](uint32_t dimension) {
+    UintVector bits;
+    PT_HASHED_BITS_IN_LANES(bits, params->sampler, sample_hash, reversed_index, first_dimension + dimension);
+    return Float8(__builtin_ia32_cvtdq2ps256((IntVector)(bits >> 8))) * (1.0f / 16777216.0f);  // pt_bits_to_unit
+  };
+  const Float8 bsdf_u = value(PT_DIM_BSDF_U), bsdf_v = value(PT_DIM_BSDF_V);
+  const Float8 light_v = value(PT_DIM_LIGHT_V);
+  alignas(32) float light_u[kLanes];
+  store(light_u, value(PT_DIM_LIGHT_PICK));
+  // the light pick's search, lane by lane
   alignas(32) int32_t light_triangle[kLanes] = {};
   const int sampled = bits(active);
   for (int l = 0; l < kLanes; ++l)
-    if (sampled >> l & 1) {
-      const PtBounceSamples samples = pt_bounce_samples(params->sampler, ps.path[l].sample_hash, ps.path[l].sample,
-                                                        PT_BOUNCE_DIMS((uint32_t)ps.bounce[l]));
-      if (ps.bounce[l] >= (int32_t)PT_ROULETTE_START) roulette[l] = pt_bounce_sample(&samples, PT_DIM_ROULETTE);
-      float2 pick = pt_bounce_sample2(&samples, PT_DIM_LIGHT_PICK);
-      pick_v[l] = pick.y;
-      light_triangle[l] = (int32_t)pt_pick_light(scene->lights, params->light_count, &pick.x);
-      pick_u[l] = pick.x;
-      float2 bsdf = pt_bounce_sample2(&samples, PT_DIM_BSDF_U);
-      bsdf_u[l] = bsdf.x;
-      bsdf_v[l] = bsdf.y;
-    }
+    if (sampled >> l & 1) light_triangle[l] = (int32_t)pt_pick_light(scene->lights, params->light_count, &light_u[l]);
   const Mask8 roulette_lanes = active & (bounce >= (int32_t)PT_ROULETTE_START);
   if (kd_any(roulette_lanes)) {
     const Float8 survive = fmin(sqrt(pt_max3(beta)), 1.0f);
-    active = active & !(roulette_lanes & (load(roulette) >= survive));
+    active = active & !(roulette_lanes & (value(PT_DIM_ROULETTE) >= survive));
     beta = kd_select(roulette_lanes, beta / survive, beta);
   }
   // next-event estimation (pt_next_event)
@@ -223,21 +224,21 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
     const Float8x3 scaled_normal = kd_cross(q1 - q0, q2 - q0);
     const Float8 twice_area = kd_length(scaled_normal);
     const Float8x3 light_normal = scaled_normal / twice_area;
-    const Float8 light_u = load(pick_u), light_v = load(pick_v);
+    const Float8 light_u_picked = load(light_u);
     Float8x3 a, b, c;
     const Float8 solid_angle = pt_spherical_solid_angle(p, q0, q1, q2, &a, &b, &c);
     const Mask8 spherical = solid_angle > 0.0f;
     Float8x3 wi = {};
     Float8 dist2 = 0.0f;
     if (kd_any(spherical)) {
-      wi = pt_sample_spherical_triangle(a, b, c, solid_angle, light_u, light_v);
+      wi = pt_sample_spherical_triangle(a, b, c, solid_angle, light_u_picked, light_v);
       const Float8 distance = kd_dot(q0 - p, light_normal) / kd_dot(wi, light_normal);
       ok = ok & ((!spherical) | ((distance > 0.0f) & (distance < INFINITY)));
       dist2 = distance * distance;
     }
     if (kd_any(ok & !spherical)) {
       Float8 b1, b2;
-      pt_sample_triangle(light_u, light_v, &b1, &b2);
+      pt_sample_triangle(light_u_picked, light_v, &b1, &b2);
       const Float8x3 to_light = q0 + b1 * (q1 - q0) + b2 * (q2 - q0) - p;
       const Float8 area_dist2 = kd_dot(to_light, to_light);
       ok = ok & (spherical | (area_dist2 > 0.0f));
@@ -266,7 +267,7 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
     }
   }
   // the BSDF sample (pt_bsdf_sample's Lambertian lobe)
-  const Float8x3 wi = pt_sample_cosine(n, load(bsdf_u), load(bsdf_v));
+  const Float8x3 wi = pt_sample_cosine(n, bsdf_u, bsdf_v);
   const Float8 pdf = fmax(kd_dot(n, wi), 0.0f) * PT_INV_PI;
   const Float8x3 weight = kd_select(pdf > 0.0f, color, Float8x3{});
   const Float8 side = kd_dot(wi, ng_facing);
@@ -291,6 +292,8 @@ inline void begin(Paths& ps, int l, const PtRenderParams* params, uint32_t pixel
   ps.rx[l] = ps.ry[l] = ps.rz[l] = 0.0f;
   ps.bsdf_pdf[l] = 0.0f;
   ps.bounce[l] = 0;
+  ps.sample_hash[l] = path.sample_hash;
+  ps.sample[l] = path.sample;
   ps.alive |= 1 << l;
 }
 

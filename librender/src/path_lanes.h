@@ -197,7 +197,7 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   auto value = [&](uint32_t dimension) {
     UintVector bits;
     PT_HASHED_BITS_IN_LANES(bits, params->sampler, sample_hash, reversed_index, first_dimension + dimension);
-    return Float8(__builtin_ia32_cvtdq2ps256((IntVector)(bits >> 8))) * (1.0f / 16777216.0f);  // pt_bits_to_unit
+    return Float8((FloatVector)_mm256_cvtepi32_ps((__m256i)(bits >> 8))) * (1.0f / 16777216.0f);  // pt_bits_to_unit
   };
   const Float8 bsdf_u = value(PT_DIM_BSDF_U), bsdf_v = value(PT_DIM_BSDF_V);
   const Float8 light_v = value(PT_DIM_LIGHT_V);

@@ -191,7 +191,8 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   }
   active = active & (bounce <= (int32_t)(params->max_bounces < 0x7fffffffu ? params->max_bounces : 0x7fffffffu));
   // the bounce's sample values (pt_path_samples), a value of the 8 paths at a time
-  const UintVector sample_hash = (UintVector)load(ps.sample_hash).v, first_dimension = (UintVector)(bounce * 16 + 2).v;
+  const UintVector sample_hash = (UintVector)load(ps.sample_hash).v;
+  const UintVector first_dimension = (UintVector)(bounce * (int32_t)PT_DIMS_PER_BOUNCE + (int32_t)PT_BOUNCE_DIMS(0)).v;
   UintVector reversed_index = (UintVector)load(ps.sample).v;
   PT_LANES_REVERSE_BITS(reversed_index);
   auto value = [&](uint32_t dimension) {

@@ -111,11 +111,7 @@ inline Int8 load(const int32_t* p) {
   std::memcpy(&x.v, p, sizeof x.v);
   return x;
 }
-inline Int8 load(const uint32_t* p) {
-  Int8 x;
-  std::memcpy(&x.v, p, sizeof x.v);
-  return x;
-}
+inline Int8 load(const uint32_t* p) { return load(reinterpret_cast<const int32_t*>(p)); }
 inline void store(float* p, Float8 x) { std::memcpy(p, &x.v, sizeof x.v); }
 inline void store(int32_t* p, Int8 x) { std::memcpy(p, &x.v, sizeof x.v); }
 // base[index] in the lanes of the mask, 0 in the others (index: 32-bit, signed).

@@ -67,18 +67,17 @@ inline void store3(float* x, float* y, float* z, Float8x3 v) {
   store(y, v.y);
   store(z, v.z);
 }
-// pt_corner of each lane's triangle, in the lanes of the mask (0 in the others).
-inline Float8x3 corners(const float* triangle_vertices, Int8 triangle, Mask8 lanes, int corner) {
-  const Int8 index = triangle * (int32_t)KD_TRIANGLE_FLOATS + 3 * corner;
-  return {gather(triangle_vertices, index, lanes), gather(triangle_vertices + 1, index, lanes),
-          gather(triangle_vertices + 2, index, lanes)};
-}
 // Three consecutive floats of each lane's record (`words` floats each, numbered by `record`) from
 // float `first` on, in the lanes of the mask.
 inline Float8x3 gather3(const float* base, Int8 record, int words, int first, Mask8 lanes) {
   const Int8 index = record * words;
   return {gather(base + first, index, lanes), gather(base + first + 1, index, lanes),
           gather(base + first + 2, index, lanes)};
+}
+
+// pt_corner of each lane's triangle, in the lanes of the mask (0 in the others).
+inline Float8x3 corners(const float* triangle_vertices, Int8 triangle, Mask8 lanes, int corner) {
+  return gather3(triangle_vertices, triangle, KD_TRIANGLE_FLOATS, 3 * corner, lanes);
 }
 
 // pt_path_shade itself for the lanes set in `lanes`, one after another: the lanes' state copied

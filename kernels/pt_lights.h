@@ -17,11 +17,12 @@
 #else
 #define PT_MIS_OFF(params) 0
 #endif
-KD_INLINE float pt_mis_light(KD_GLOBAL const PtRenderParams* params, float light_pdf, float bsdf_pdf) {
-  return PT_MIS_OFF(params) ? 1.0f : pt_power_heuristic(light_pdf, bsdf_pdf);
+KD_LANE_FN kd_lane pt_mis_light(KD_GLOBAL const PtRenderParams* params, kd_lane light_pdf, kd_lane bsdf_pdf) {
+  if (PT_MIS_OFF(params)) return (kd_lane)1.0f;
+  return pt_power_heuristic(light_pdf, bsdf_pdf);
 }
-KD_INLINE float pt_mis_bsdf(KD_GLOBAL const PtRenderParams* params, float bsdf_pdf, float light_pdf) {
-  if (PT_MIS_OFF(params)) return light_pdf > 0.0f ? 0.0f : 1.0f;
+KD_LANE_FN kd_lane pt_mis_bsdf(KD_GLOBAL const PtRenderParams* params, kd_lane bsdf_pdf, kd_lane light_pdf) {
+  if (PT_MIS_OFF(params)) return kd_select(light_pdf > 0.0f, (kd_lane)0.0f, (kd_lane)1.0f);
   return pt_power_heuristic(bsdf_pdf, light_pdf);
 }
 

@@ -1,11 +1,14 @@
-// The host's path tracer 8 paths at a time in AVX2 lanes, for scenes lit by their emissive
-// triangles alone (apply() below): each step traces the closest hits of the live paths one after
-// another (kernels/kd_traverse.h), shades the diffuse and emissive hits all at once
-// (pt_path_shade's parts for them: the hit point and its smooth normal, emission with MIS,
-// Russian roulette, next-event estimation on the triangle lights, the Lambertian BSDF sample) and
-// the mirror, rough conductor and glass hits with pt_path_shade lane by lane, then traces their
-// shadow rays; a path that ends is added to the film and its lane takes the next sample. The
-// shading in lanes calls the device code's lane functions (kernels/kd_lane.h) with 8-float lanes
+// The host's path tracer 8 paths at a time in AVX2 lanes (for any scene whose arrays the gathers
+// reach, apply() below). Each step traces the closest hits of the live paths one after another
+// (kernels/kd_traverse.h) and shades them. Diffuse and emissive hits, untextured and opaque, are
+// shaded all at once with pt_path_shade's parts for them: the hit point and its smooth normal,
+// emission with MIS, Russian roulette, next-event estimation (on the triangle lights in lanes;
+// with the environment, punctual lights or textured emission, pt_next_event_any lane by lane) and
+// the Lambertian BSDF sample. Every other hit (mirror, rough conductor, glass, the glTF material,
+// textures, alpha) and a ray that leaves the scene towards an environment are shaded by
+// pt_path_shade lane by lane, and their paths stay in their lanes. Then the shadow rays are
+// traced; a path that ends is added to the film and its lane takes the next sample. The shading
+// in lanes calls the device code's lane functions (kernels/kd_lane.h) with 8-float lanes
 // (lane8.h), so each lane computes what pt_path_shade computes for its path, bit for bit, and the
 // film is the scalar path tracer's and the kernel's (tests/render/cpu_integrator.h compares them).
 // Sample values, the light pick's search and a path's start and film sums stay scalar, lane by
@@ -21,20 +24,9 @@ namespace path_lanes {
 
 using namespace lane8;
 
-// The features the lanes render: smooth normals, and surfaces diffuse and emissive (in lanes),
-// mirror, rough conductor and glass (with pt_path_shade lane by lane; their paths stay in their
-// lanes).
-#define PATH_LANES_FEATURES \
-  (PT_FEATURE_EMISSION | PT_FEATURE_NORMALS | PT_FEATURE_MIRROR | PT_FEATURE_GLOSSY | PT_FEATURE_GLASS)
-
-// Whether the lanes render this pass as the scalar path tracer would: no feature but those (so
-// every material is untextured and opaque), next-event estimation on the triangle lights alone,
-// and no float array longer than the gathers' 32-bit signed indices reach (`gathered_floats`: the
-// longest, in floats or indices).
-inline bool apply(const PtRenderParams& params, size_t gathered_floats) {
-  return (params.features & ~PATH_LANES_FEATURES) == 0 && params.light_count > 0 && params.select_triangles == 1.0f &&
-         gathered_floats <= size_t{0x7fffffff};
-}
+// Whether the lanes render this pass: when no float array is longer than the gathers' 32-bit signed
+// indices reach (`gathered_floats`: the longest, in floats or indices).
+inline bool apply(size_t gathered_floats) { return gathered_floats <= size_t{0x7fffffff}; }
 
 // The state of the lanes' paths (PtPath's), one array element per lane: what shading reads in
 // lanes as arrays of 8, the rest (pixel, sample, first-hit AOVs) in a PtPath per lane.
@@ -59,6 +51,11 @@ static_assert(sizeof(HitRecord) == 16 && KD_OFFSETOF(HitRecord, t) == 0 && KD_OF
 static_assert(sizeof(PtMaterial) == 16 * 4 && KD_OFFSETOF(PtMaterial, base_color) == 0 &&
                   KD_OFFSETOF(PtMaterial, type) == 3 * 4 && KD_OFFSETOF(PtMaterial, emission) == 4 * 4,
               "PtMaterial: 16 words, base colour at 0, type at 3, emission at 4");
+// The word of a PtMaterial member.
+#define PATH_LANES_MATERIAL_WORD(member) (KD_OFFSETOF(PtMaterial, member) / 4)
+// The features under which a material is shaded in lanes only where it is untextured and opaque.
+constexpr uint32_t kPlainMaterialFeatures = PT_FEATURE_ALPHA | PT_FEATURE_TEXTURES | PT_FEATURE_METAL_ROUGH_TEXTURE |
+                                            PT_FEATURE_NORMAL_MAP | PT_FEATURE_EMISSIVE_TEXTURE;
 
 // The lanes' float3 from, and to, its coordinates' arrays.
 inline Float8x3 load3(const float* x, const float* y, const float* z) { return {load(x), load(y), load(z)}; }
@@ -78,6 +75,20 @@ inline Float8x3 gather3(const float* base, Int8 record, int words, int first, Ma
 // pt_corner of each lane's triangle, in the lanes of the mask (0 in the others).
 inline Float8x3 corners(const float* triangle_vertices, Int8 triangle, Mask8 lanes, int corner) {
   return gather3(triangle_vertices, triangle, KD_TRIANGLE_FLOATS, 3 * corner, lanes);
+}
+
+// The lane's float3 of a lanes' float3.
+inline float3 lane(const Float8x3& v, int l) { return KD_FLOAT3(v.x[l], v.y[l], v.z[l]); }
+
+// Lane l's shadow ray, if pt_next_event_any or pt_path_shade has set one up in its PtPath.
+inline void take_shadow_ray(Paths& ps, int l) {
+  const PtPath& path = ps.path[l];
+  if (!path.shadow_pending) return;
+  ps.shadow |= 1 << l;
+  ps.sox[l] = path.shadow_origin.x, ps.soy[l] = path.shadow_origin.y, ps.soz[l] = path.shadow_origin.z;
+  ps.ssx[l] = path.shadow_span.x, ps.ssy[l] = path.shadow_span.y, ps.ssz[l] = path.shadow_span.z;
+  ps.scx[l] = path.shadow_contribution.x, ps.scy[l] = path.shadow_contribution.y;
+  ps.scz[l] = path.shadow_contribution.z;
 }
 
 // pt_path_shade itself for the lanes set in `lanes`, one after another: the lanes' state copied
@@ -108,12 +119,96 @@ inline void shaded_lane_by_lane(Paths& ps, int lanes) {
     ps.bsdf_pdf[l] = path.bsdf_pdf;
     ps.bounce[l] = (int32_t)path.bounce;
     ps.alive = (ps.alive & ~(1 << l)) | (path.alive ? 1 << l : 0);
-    if (!path.shadow_pending) continue;
-    ps.shadow |= 1 << l;
-    ps.sox[l] = path.shadow_origin.x, ps.soy[l] = path.shadow_origin.y, ps.soz[l] = path.shadow_origin.z;
-    ps.ssx[l] = path.shadow_span.x, ps.ssy[l] = path.shadow_span.y, ps.ssz[l] = path.shadow_span.z;
-    ps.scx[l] = path.shadow_contribution.x, ps.scy[l] = path.shadow_contribution.y;
-    ps.scz[l] = path.shadow_contribution.z;
+    take_shadow_ray(ps, l);
+  }
+}
+
+// Whether next-event estimation is pt_next_event on the triangle lights, with their emission
+// untextured, for every path: then it runs in lanes (next_event_on_triangles).
+inline bool next_event_on_triangles_in_lanes(const PtRenderParams* params) {
+  return params->select_triangles == 1.0f && !PT_USES(params, PT_FEATURE_EMISSIVE_TEXTURE);
+}
+
+// pt_next_event for the lanes of `active`, shading point p (normal n, facing geometric normal
+// ng_facing, Lambertian colour `color`, throughput beta), with the bounce's light-pick and
+// light values: the shadow rays into ps.
+inline void next_event_on_triangles(Paths& ps, const PtSceneData* scene, const PtRenderParams* params, Mask8 active,
+                                    Float8 light_pick, Float8 light_v, Float8x3 p, Float8x3 n, Float8x3 ng_facing,
+                                    Float8x3 color, Float8x3 beta) {
+  // the light pick's search, lane by lane
+  alignas(32) float light_u[kLanes];
+  store(light_u, light_pick);
+  alignas(32) int32_t light_triangle[kLanes] = {};
+  const int picking = bits(active);
+  for (int l = 0; l < kLanes; ++l)
+    if (picking >> l & 1) light_triangle[l] = (int32_t)pt_pick_light(scene->lights, params->light_count, &light_u[l]);
+  Mask8 ok = active;
+  const Int8 light = load(light_triangle);
+  const Float8x3 q0 = corners(scene->triangle_vertices, light, ok, 0);
+  const Float8x3 q1 = corners(scene->triangle_vertices, light, ok, 1);
+  const Float8x3 q2 = corners(scene->triangle_vertices, light, ok, 2);
+  const Float8x3 scaled_normal = kd_cross(q1 - q0, q2 - q0);
+  const Float8 twice_area = kd_length(scaled_normal);
+  const Float8x3 light_normal = scaled_normal / twice_area;
+  const Float8 light_u_picked = load(light_u);
+  Float8x3 a, b, c;
+  const Float8 solid_angle = pt_spherical_solid_angle(p, q0, q1, q2, &a, &b, &c);
+  const Mask8 spherical = solid_angle > 0.0f;
+  Float8x3 wi = {};
+  Float8 dist2 = 0.0f;
+  if (kd_any(spherical)) {
+    wi = pt_sample_spherical_triangle(a, b, c, solid_angle, light_u_picked, light_v);
+    const Float8 distance = kd_dot(q0 - p, light_normal) / kd_dot(wi, light_normal);
+    ok = ok & ((!spherical) | ((distance > 0.0f) & (distance < INFINITY)));
+    dist2 = distance * distance;
+  }
+  if (kd_any(ok & !spherical)) {
+    Float8 b1, b2;
+    pt_sample_triangle(light_u_picked, light_v, &b1, &b2);
+    const Float8x3 to_light = q0 + b1 * (q1 - q0) + b2 * (q2 - q0) - p;
+    const Float8 area_dist2 = kd_dot(to_light, to_light);
+    ok = ok & (spherical | (area_dist2 > 0.0f));
+    wi = kd_select(spherical, wi, to_light * kd_rsqrt(area_dist2));
+    dist2 = kd_select(spherical, dist2, area_dist2);
+  }
+  const Float8 cos_light = -kd_dot(light_normal, wi);
+  ok = ok & !(cos_light <= 0.0f);
+  // pt_bsdf_eval's Lambertian lobe
+  const Float8 cos_i = kd_dot(n, wi);
+  const Float8 pdf = kd_select(cos_i <= 0.0f, Float8(0.0f), cos_i * PT_INV_PI);
+  const Float8x3 f_cos = kd_select(cos_i <= 0.0f, Float8x3{}, color * (cos_i * PT_INV_PI));
+  ok = ok & !(pdf <= 0.0f) & !(kd_dot(wi, ng_facing) <= 0.0f);
+  if (!kd_any(ok)) return;
+  ps.shadow |= bits(ok);
+  const Int8 light_material = gather(reinterpret_cast<const int32_t*>(scene->material_ids), light, ok);
+  const Float8x3 emission = gather3(reinterpret_cast<const float*>(scene->materials), light_material, 16, 4, ok);
+  const Float8 pick_per_area = params->select_triangles * pt_luminance(emission) * params->light_area_pdf_scale;
+  const Float8 light_pdf = pt_triangle_light_pdf(pick_per_area, 0.5f * twice_area, solid_angle, dist2, cos_light);
+  const Float8 weight = pt_mis_light(params, light_pdf, pdf);
+  const Float8x3 shadow_origin = pt_offset_origin(p, ng_facing);
+  const Float8x3 target = pt_offset_origin(p + sqrt(dist2) * wi, light_normal);
+  store3(ps.sox, ps.soy, ps.soz, shadow_origin);
+  store3(ps.ssx, ps.ssy, ps.ssz, target - shadow_origin);
+  store3(ps.scx, ps.scy, ps.scz, beta * f_cos * emission * (weight / light_pdf));
+}
+
+// pt_next_event_any for the lanes set in `lanes`, one after another (any light: the environment,
+// punctual lights, textured emission): the shading point and material as next_event_on_triangles
+// takes them, with the bounce and each lane's material number.
+inline void next_event_lane_by_lane(Paths& ps, int lanes, const PtSceneData* scene, const PtRenderParams* params,
+                                    Int8 material, Int8 bounce, Float8x3 p, Float8x3 n, Float8x3 ng_facing,
+                                    Float8x3 wo, Float8x3 color, Float8x3 beta) {
+  for (int l = 0; l < kLanes; ++l) {
+    if (!(lanes >> l & 1)) continue;
+    PtPath& path = ps.path[l];
+    path.bounce = (uint32_t)bounce.v[l];
+    path.throughput = lane(beta, l);
+    path.shadow_pending = 0;
+    const PtBounceSamples samples = pt_path_samples(&path, params);
+    const PtMaterial m = scene->materials[material.v[l]];
+    pt_next_event_any(&path, scene, params, &samples, &m, lane(color, l), lane(p, l), lane(n, l), lane(ng_facing, l),
+                      lane(wo, l));
+    take_shadow_ray(ps, l);
   }
 }
 
@@ -124,18 +219,29 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   ps.shadow = 0;
   const Int8 hit_record = Int8(IntVector{0, 1, 2, 3, 4, 5, 6, 7});
   const float* hit_floats = reinterpret_cast<const float*>(hits);
-  const Int8 tri = gather(reinterpret_cast<const int32_t*>(hits) + 1, hit_record * 4, lanes_of(ps.alive));
-  Mask8 active = lanes_of(ps.alive) & (tri != (int32_t)KD_NO_HIT);
-  ps.alive = bits(active);
-  if (!ps.alive) return;
+  const Mask8 alive = lanes_of(ps.alive);
+  const Int8 tri = gather(reinterpret_cast<const int32_t*>(hits) + 1, hit_record * 4, alive);
+  Mask8 active = alive & (tri != (int32_t)KD_NO_HIT);
+  // a ray that leaves the scene sees the environment, lane by lane
+  int by_lane = PT_USES(params, PT_FEATURE_ENVIRONMENT) ? bits(alive & !active) : 0;
   const Float8 t = gather(hit_floats, hit_record * 4, active);
   const Float8 u = gather(hit_floats + 2, hit_record * 4, active), v = gather(hit_floats + 3, hit_record * 4, active);
   const Int8 material = gather(reinterpret_cast<const int32_t*>(scene->material_ids), tri, active);
   const float* material_floats = reinterpret_cast<const float*>(scene->materials);
-  const Int8 type = gather(reinterpret_cast<const int32_t*>(scene->materials) + 3, material * 16, active);
-  const int by_lane = bits(active & (type != (int32_t)PT_DIFFUSE) & (type != (int32_t)PT_EMISSIVE));
+  const int32_t* material_words = reinterpret_cast<const int32_t*>(scene->materials);
+  const Int8 type = gather(material_words + 3, material * 16, active);
+  Mask8 in_lanes = (type == (int32_t)PT_DIFFUSE) | (type == (int32_t)PT_EMISSIVE);
+  if (PT_USES(params, kPlainMaterialFeatures)) {
+    // untextured and opaque: what pt_apply_textures, pt_alpha_passes and pt_textured_emission leave as it is
+    const Int8 words = material * 16;
+    in_lanes = in_lanes & (gather(material_floats + PATH_LANES_MATERIAL_WORD(alpha_cutoff), words, active) == 0.0f);
+    for (size_t texture : {PATH_LANES_MATERIAL_WORD(texture), PATH_LANES_MATERIAL_WORD(metal_rough_texture),
+                           PATH_LANES_MATERIAL_WORD(normal_texture), PATH_LANES_MATERIAL_WORD(emissive_texture)})
+      in_lanes = in_lanes & !(gather(material_words + texture, words, active) >= 0);
+  }
+  by_lane |= bits(active & !in_lanes);
   shade_lane_by_lane(ps, by_lane, scene, params, hits);
-  active = active & !lanes_of(by_lane);
+  active = active & in_lanes;
   if (!kd_any(active)) {
     ps.alive = 0;
     shaded_lane_by_lane(ps, by_lane);
@@ -174,7 +280,7 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   Float8x3 radiance = load3(ps.rx, ps.ry, ps.rz);
   const Float8 bsdf_pdf = load(ps.bsdf_pdf);
   const Mask8 emissive = active & (type == (int32_t)PT_EMISSIVE) & front;
-  if (kd_any(emissive)) {
+  if (PT_USES(params, PT_FEATURE_EMISSION) && kd_any(emissive)) {
     const Float8x3 emission = gather3(material_floats, material, 16, 4, emissive);
     Float8 weight = 1.0f;
     const Mask8 mis = emissive & (bsdf_pdf > 0.0f);
@@ -184,7 +290,7 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
       const Float8 pick_per_area = params->select_triangles * pt_luminance(emission) * params->light_area_pdf_scale;
       const Float8 light_pdf = pt_triangle_light_pdf(pick_per_area, 0.5f * kd_length(kd_cross(p1 - p0, p2 - p0)),
                                                      solid_angle, t * t, kd_dot(ng, wo));
-      weight = kd_select(mis, pt_power_heuristic(bsdf_pdf, light_pdf), weight);
+      weight = kd_select(mis, pt_mis_bsdf(params, bsdf_pdf, light_pdf), weight);
     }
     radiance = kd_select(emissive, radiance + beta * emission * weight, radiance);
   }
@@ -200,71 +306,17 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
     return Float8((FloatVector)_mm256_cvtepi32_ps((__m256i)(bits >> 8))) * (1.0f / 16777216.0f);  // pt_bits_to_unit
   };
   const Float8 bsdf_u = value(PT_DIM_BSDF_U), bsdf_v = value(PT_DIM_BSDF_V);
-  const Float8 light_v = value(PT_DIM_LIGHT_V);
-  alignas(32) float light_u[kLanes];
-  store(light_u, value(PT_DIM_LIGHT_PICK));
-  // the light pick's search, lane by lane
-  alignas(32) int32_t light_triangle[kLanes] = {};
-  const int sampled = bits(active);
-  for (int l = 0; l < kLanes; ++l)
-    if (sampled >> l & 1) light_triangle[l] = (int32_t)pt_pick_light(scene->lights, params->light_count, &light_u[l]);
   const Mask8 roulette_lanes = active & (bounce >= (int32_t)PT_ROULETTE_START);
   if (kd_any(roulette_lanes)) {
     const Float8 survive = fmin(sqrt(pt_max3(beta)), 1.0f);
     active = active & !(roulette_lanes & (value(PT_DIM_ROULETTE) >= survive));
     beta = kd_select(roulette_lanes, beta / survive, beta);
   }
-  // next-event estimation (pt_next_event)
-  {
-    Mask8 ok = active;
-    const Int8 light = load(light_triangle);
-    const Float8x3 q0 = corners(scene->triangle_vertices, light, ok, 0);
-    const Float8x3 q1 = corners(scene->triangle_vertices, light, ok, 1);
-    const Float8x3 q2 = corners(scene->triangle_vertices, light, ok, 2);
-    const Float8x3 scaled_normal = kd_cross(q1 - q0, q2 - q0);
-    const Float8 twice_area = kd_length(scaled_normal);
-    const Float8x3 light_normal = scaled_normal / twice_area;
-    const Float8 light_u_picked = load(light_u);
-    Float8x3 a, b, c;
-    const Float8 solid_angle = pt_spherical_solid_angle(p, q0, q1, q2, &a, &b, &c);
-    const Mask8 spherical = solid_angle > 0.0f;
-    Float8x3 wi = {};
-    Float8 dist2 = 0.0f;
-    if (kd_any(spherical)) {
-      wi = pt_sample_spherical_triangle(a, b, c, solid_angle, light_u_picked, light_v);
-      const Float8 distance = kd_dot(q0 - p, light_normal) / kd_dot(wi, light_normal);
-      ok = ok & ((!spherical) | ((distance > 0.0f) & (distance < INFINITY)));
-      dist2 = distance * distance;
-    }
-    if (kd_any(ok & !spherical)) {
-      Float8 b1, b2;
-      pt_sample_triangle(light_u_picked, light_v, &b1, &b2);
-      const Float8x3 to_light = q0 + b1 * (q1 - q0) + b2 * (q2 - q0) - p;
-      const Float8 area_dist2 = kd_dot(to_light, to_light);
-      ok = ok & (spherical | (area_dist2 > 0.0f));
-      wi = kd_select(spherical, wi, to_light * kd_rsqrt(area_dist2));
-      dist2 = kd_select(spherical, dist2, area_dist2);
-    }
-    const Float8 cos_light = -kd_dot(light_normal, wi);
-    ok = ok & !(cos_light <= 0.0f);
-    // pt_bsdf_eval's Lambertian lobe
-    const Float8 cos_i = kd_dot(n, wi);
-    const Float8 pdf = kd_select(cos_i <= 0.0f, Float8(0.0f), cos_i * PT_INV_PI);
-    const Float8x3 f_cos = kd_select(cos_i <= 0.0f, Float8x3{}, color * (cos_i * PT_INV_PI));
-    ok = ok & !(pdf <= 0.0f) & !(kd_dot(wi, ng_facing) <= 0.0f);
-    ps.shadow = bits(ok);
-    if (ps.shadow) {
-      const Int8 light_material = gather(reinterpret_cast<const int32_t*>(scene->material_ids), light, ok);
-      const Float8x3 emission = gather3(material_floats, light_material, 16, 4, ok);
-      const Float8 pick_per_area = params->select_triangles * pt_luminance(emission) * params->light_area_pdf_scale;
-      const Float8 light_pdf = pt_triangle_light_pdf(pick_per_area, 0.5f * twice_area, solid_angle, dist2, cos_light);
-      const Float8 weight = pt_power_heuristic(light_pdf, pdf);
-      const Float8x3 shadow_origin = pt_offset_origin(p, ng_facing);
-      const Float8x3 target = pt_offset_origin(p + sqrt(dist2) * wi, light_normal);
-      store3(ps.sox, ps.soy, ps.soz, shadow_origin);
-      store3(ps.ssx, ps.ssy, ps.ssz, target - shadow_origin);
-      store3(ps.scx, ps.scy, ps.scz, beta * f_cos * emission * (weight / light_pdf));
-    }
+  if (next_event_on_triangles_in_lanes(params)) {
+    next_event_on_triangles(ps, scene, params, active, value(PT_DIM_LIGHT_PICK), value(PT_DIM_LIGHT_V), p, n, ng_facing,
+                            color, beta);
+  } else {
+    next_event_lane_by_lane(ps, bits(active), scene, params, material, bounce, p, n, ng_facing, wo, color, beta);
   }
   // the BSDF sample (pt_bsdf_sample's Lambertian lobe)
   const Float8x3 wi = pt_sample_cosine(n, bsdf_u, bsdf_v);
@@ -277,7 +329,7 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   store(ps.bsdf_pdf, pdf);
   store3(ps.ox, ps.oy, ps.oz, pt_offset_origin(p, ng_facing));
   store3(ps.dx, ps.dy, ps.dz, wi);
-  store(ps.bounce, bounce + 1);
+  store(ps.bounce, kd_select(active, bounce + 1, bounce));  // an ended path's, as pt_path_shade leaves it
   ps.alive = bits(active);
   shaded_lane_by_lane(ps, by_lane);
 }
@@ -332,9 +384,11 @@ inline uint64_t render(const PtSceneData* scene, const PtRenderParams* params, u
     for (int l = 0; l < kLanes; ++l)
       if (ps.shadow >> l & 1) {
         ++rays;
-        RayRecord ray =
-            pt_ray(KD_FLOAT3(ps.sox[l], ps.soy[l], ps.soz[l]), KD_FLOAT3(ps.ssx[l], ps.ssy[l], ps.ssz[l]), 1.0f);
-        if (!kd_intersect_any(&scene->kd, ray)) {
+        PtPath& path = ps.path[l];  // what pt_path_occluded reads of it
+        path.shadow_origin = KD_FLOAT3(ps.sox[l], ps.soy[l], ps.soz[l]);
+        path.shadow_span = KD_FLOAT3(ps.ssx[l], ps.ssy[l], ps.ssz[l]);
+        path.bounce = (uint32_t)ps.bounce[l];
+        if (!pt_path_occluded(scene, &path, params)) {
           ps.rx[l] += ps.scx[l];
           ps.ry[l] += ps.scy[l];
           ps.rz[l] += ps.scz[l];

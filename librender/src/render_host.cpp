@@ -75,7 +75,7 @@ class HostRender : public RenderWorker {
 
 }  // namespace
 
-HostPixelsBuild host_pixels_build(const PtRenderParams& params, size_t gathered_floats) {
+HostPixelsBuild host_pixels_build(size_t gathered_floats) {
   const char* asked = std::getenv("KDRAY_HOST_ISA");
   const bool generic = asked != nullptr && std::string(asked) == "generic";
   if (asked != nullptr && !generic) {
@@ -91,12 +91,11 @@ HostPixelsBuild host_pixels_build(const PtRenderParams& params, size_t gathered_
   // CPUs that have them have the rest of it (F16C, LZCNT, MOVBE).
   const bool x86_64_v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") &&
                          __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("fma");
-  if (!generic && x86_64_v3 && !lanes_off && host_pixels_x86_64_v3::paths_in_lanes_apply(params, gathered_floats)) {
+  if (!generic && x86_64_v3 && !lanes_off && host_pixels_x86_64_v3::paths_in_lanes_apply(gathered_floats)) {
     return {host_pixels_x86_64_v3::render_pixels_in_lanes, "x86-64-v3, paths in lanes", true};
   }
   if (!generic && x86_64_v3) return {host_pixels_x86_64_v3::render_pixels, "x86-64-v3", true};
 #else
-  (void)params;
   (void)gathered_floats;
   (void)lanes_off;
 #endif
@@ -114,7 +113,7 @@ std::unique_ptr<RenderWorker> prepare_host(const Scene& scene, const KdTree& tre
   const PtRenderParams params = render_params(render, arrays);
   // the longest arrays the paths in lanes gather from: the triangles' corners, the vertex normals
   const size_t gathered_floats = std::max(arrays.triangle_vertices.bytes, arrays.normals.bytes) / sizeof(float);
-  const HostPixelsBuild build = host_pixels_build(params, gathered_floats);
+  const HostPixelsBuild build = host_pixels_build(gathered_floats);
   auto host = std::make_unique<HostRender>(std::move(arrays), params, device.threads, build.render);
   RenderStats& stats = host->stats;
   stats.device = kHostDevice;

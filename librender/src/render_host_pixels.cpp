@@ -77,8 +77,8 @@ uint64_t render_pixels(const SceneArrays& arrays, const PtRenderParams& pass, ui
 }
 
 #ifdef KDRAY_HOST_PIXELS_X86_64_V3
-bool paths_in_lanes_apply(const PtRenderParams& params, size_t gathered_floats) {
-  return path_lanes::apply(params, gathered_floats);
+bool paths_in_lanes_apply(size_t gathered_floats) {
+  return path_lanes::apply(gathered_floats);
 }
 
 uint64_t render_pixels_in_lanes(const SceneArrays& arrays, const PtRenderParams& pass, uint32_t begin, uint32_t end,

@@ -25,12 +25,12 @@ struct HostPixelsBuild {
   bool bounce_bits_in_lanes;  // PT_BOUNCE_BITS_IN_LANES (kernels/pt_rng.h): the AVX2 build's
 };
 
-// The build for this CPU and a pass like `params` (`gathered_floats`: paths_in_lanes_apply's): x86-64-v3
-// where the CPU has it, with 8 paths at a time in lanes where the scene is of the kind they
-// render (path_lanes.h), unless the environment asks for another to compare them:
+// The build for this CPU and a scene whose longest gathered array has `gathered_floats` floats
+// (paths_in_lanes_apply's): x86-64-v3 where the CPU has it, with 8 paths at a time in lanes where
+// they apply (path_lanes.h), unless the environment asks for another to compare them:
 // KDRAY_HOST_ISA=generic for the generic build, KDRAY_HOST_LANES=off for the x86-64-v3 build one
 // path at a time. Throws kdray::Error for any other value of those variables.
-HostPixelsBuild host_pixels_build(const PtRenderParams& params, size_t gathered_floats);
+HostPixelsBuild host_pixels_build(size_t gathered_floats);
 
 namespace host_pixels_generic {
 uint64_t render_pixels(const SceneArrays& arrays, const PtRenderParams& params, uint32_t begin, uint32_t end,
@@ -41,7 +41,7 @@ namespace host_pixels_x86_64_v3 {
 uint64_t render_pixels(const SceneArrays& arrays, const PtRenderParams& params, uint32_t begin, uint32_t end,
                        int64_t* film, uint32_t* nonfinite);
 // The same film, 8 paths at a time (path_lanes.h), for passes where paths_in_lanes_apply holds.
-bool paths_in_lanes_apply(const PtRenderParams& params, size_t gathered_floats);
+bool paths_in_lanes_apply(size_t gathered_floats);
 uint64_t render_pixels_in_lanes(const SceneArrays& arrays, const PtRenderParams& params, uint32_t begin, uint32_t end,
                                 int64_t* film, uint32_t* nonfinite);
 }

@@ -23,8 +23,9 @@ TEST(CpuIntegrator, CornellBoxMatchesTheKernelBitForBitOnOneThread) {
   EXPECT_GT(expect_host_matches_kernel(scene, cornell_settings(), {"-DKD_FEATURE_EMISSION"}, 1), 24u * 24u / 2);
 }
 
-// The paths in lanes (librender/src/path_lanes.h) over 8 bounces, Russian roulette's included, with every AOV, on two threads: lanes end and take new samples at every
-// step, and tasks end with lanes empty.
+// The paths in lanes (librender/src/path_lanes.h) over 8 bounces, Russian roulette's included,
+// with every AOV, on two threads: lanes end and take new samples at every step, and tasks end
+// with lanes empty.
 TEST(CpuIntegrator, CornellBoxInLanesMatchesTheKernelBitForBitWithEveryAov) {
   Scene scene = import_scene(cornell_obj(), ImportOptions{});
   RenderSettings settings = cornell_settings();
@@ -68,6 +69,34 @@ TEST(CpuIntegrator, CornellBoxWithNormalsAndSpecularSurfacesInLanesMatchesTheKer
                 {"-DKD_FEATURE_EMISSION", "-DKD_FEATURE_NORMALS", "-DKD_FEATURE_MIRROR", "-DKD_FEATURE_GLOSSY",
                  "-DKD_FEATURE_GLASS"},
                 2),
+            32u * 32u / 4);
+}
+
+// The lanes with alpha: every third of the Cornell box's diffuse triangles blended (alpha 0.5),
+// shaded lane by lane where a ray meets one and walked through by the shadow rays of every lane,
+// whose pass-through decisions hash the path's bounce; vertex normals tilted, so that some paths
+// end at a BSDF sample below the surface with a shadow ray traced (the bounce it keeps).
+TEST(CpuIntegrator, CornellBoxWithBlendedSurfacesInLanesMatchesTheKernelBitForBit) {
+  Scene scene = import_scene(cornell_obj(), ImportOptions{});
+  for (size_t i = 0; i < scene.positions.size(); ++i) {
+    const float tilt = 0.4f * float(i % 5) - 0.8f;
+    scene.normals.push_back(Vec3{tilt, 1.0f, -tilt});
+  }
+  const uint32_t blended = uint32_t(scene.materials.size());
+  Material glass_pane;  // diffuse, half transparent
+  glass_pane.base_color = {0.7f, 0.6f, 0.5f};
+  glass_pane.alpha = 0.5f;
+  glass_pane.alpha_mode = AlphaMode::Blend;
+  scene.materials.push_back(glass_pane);
+  uint32_t diffuse = 0;
+  for (uint32_t& id : scene.material_ids) {
+    if (id < blended && scene.materials[id].type == MaterialType::Diffuse && diffuse++ % 3 == 1) id = blended;
+  }
+  RenderSettings settings = cornell_settings();
+  settings.width = settings.height = 32;
+  settings.spp = 16;
+  EXPECT_GT(expect_host_matches_kernel(scene, settings,
+                                       {"-DKD_FEATURE_EMISSION", "-DKD_FEATURE_NORMALS", "-DKD_FEATURE_ALPHA"}, 2),
             32u * 32u / 4);
 }
 

@@ -22,10 +22,12 @@ typedef struct PtBsdfSample {
 #define PT_GGX_CODE
 #endif
 
+/* The GGX functions the glTF material uses are lane functions (kernels/kd_lane.h): the host's
+ * paths in lanes shade that material 8 paths at a time with them. */
 #ifdef PT_GGX_CODE
-KD_INLINE float pt_ggx_d(float cos_h, float alpha2) {
-  float c2 = cos_h * cos_h;
-  float denom = c2 * (alpha2 - 1.0f) + 1.0f;
+KD_LANE_FN kd_lane pt_ggx_d(kd_lane cos_h, kd_lane alpha2) {
+  kd_lane c2 = cos_h * cos_h;
+  kd_lane denom = c2 * (alpha2 - 1.0f) + 1.0f;
   return alpha2 / (PT_PI * denom * denom);
 }
 KD_INLINE float pt_ggx_g1(float cos_v, float alpha2) {
@@ -34,22 +36,25 @@ KD_INLINE float pt_ggx_g1(float cos_v, float alpha2) {
   return 2.0f / (1.0f + sqrt(1.0f + alpha2 * tan2));
 }
 /* Schlick's (1 - cos)^5, the share of 1 - f0 that a Fresnel factor adds to f0. */
-KD_INLINE float pt_schlick_weight(float cos_theta) {
-  float m = clamp(1.0f - cos_theta, 0.0f, 1.0f);
+KD_LANE_FN kd_lane pt_schlick_weight(kd_lane cos_theta) {
+  kd_lane m = clamp(1.0f - cos_theta, 0.0f, 1.0f);
   return (m * m) * (m * m) * m;
 }
-KD_INLINE float3 pt_schlick(float3 f0, float cos_theta) { return f0 + (1.0f - f0) * pt_schlick_weight(cos_theta); }
-KD_INLINE float pt_ggx_alpha2(float roughness) {
-  float alpha = fmax(roughness, 1e-3f);
+KD_LANE_FN kd_lane3 pt_schlick(kd_lane3 f0, kd_lane cos_theta) {
+  return f0 + (1.0f - f0) * pt_schlick_weight(cos_theta);
+}
+KD_LANE_FN kd_lane pt_ggx_alpha2(kd_lane roughness) {
+  kd_lane alpha = fmax(roughness, 1e-3f);
   return alpha * alpha;
 }
 /* D(h) for the half vector h of wo and wi (both on the side of n), with wo . h and the pdf of
  * drawing wi by pt_ggx_sample_wi. */
-KD_INLINE float pt_ggx_half_vector_d(float alpha2, float3 n, float3 wo, float3 wi, float* pdf, float* o_h) {
-  float3 h = kd_normalize(wo + wi);
-  float cos_h = kd_dot(n, h);
+KD_LANE_FN kd_lane pt_ggx_half_vector_d(kd_lane alpha2, kd_lane3 n, kd_lane3 wo, kd_lane3 wi, kd_lane* pdf,
+                                       kd_lane* o_h) {
+  kd_lane3 h = kd_normalize(wo + wi);
+  kd_lane cos_h = kd_dot(n, h);
   *o_h = kd_dot(wo, h);
-  float d = pt_ggx_d(cos_h, alpha2);
+  kd_lane d = pt_ggx_d(cos_h, alpha2);
   *pdf = d * cos_h / (4.0f * *o_h);
   return d;
 }
@@ -72,15 +77,15 @@ KD_INLINE float3 pt_ggx_eval(float3 color, float roughness, float3 n, float3 wo,
   return common > 0.0f ? pt_schlick(color, o_h) * common : kd_splat3(0.0f);
 }
 /* wo reflected about a half vector drawn from D(h) cos(h). */
-KD_INLINE float3 pt_ggx_sample_wi(float roughness, float3 n, float3 wo, float u1, float u2) {
-  float alpha2 = pt_ggx_alpha2(roughness);
-  float tan2 = alpha2 * u1 / fmax(1.0f - u1, 1e-7f);
-  float cos_h = 1.0f / sqrt(1.0f + tan2);
-  float sin_h = sqrt(fmax(0.0f, 1.0f - cos_h * cos_h));
-  float phi = 2.0f * PT_PI * u2;
-  float sin_phi, cos_phi;
+KD_LANE_FN kd_lane3 pt_ggx_sample_wi(kd_lane roughness, kd_lane3 n, kd_lane3 wo, kd_lane u1, kd_lane u2) {
+  kd_lane alpha2 = pt_ggx_alpha2(roughness);
+  kd_lane tan2 = alpha2 * u1 / fmax(1.0f - u1, 1e-7f);
+  kd_lane cos_h = 1.0f / sqrt(1.0f + tan2);
+  kd_lane sin_h = sqrt(fmax(0.0f, 1.0f - cos_h * cos_h));
+  kd_lane phi = 2.0f * PT_PI * u2;
+  kd_lane sin_phi, cos_phi;
   kd_sincos(phi, &sin_phi, &cos_phi);
-  float3 h = pt_to_world(KD_FLOAT3(sin_h * cos_phi, sin_h * sin_phi, cos_h), n);
+  kd_lane3 h = pt_to_world(KD_LANE3(sin_h * cos_phi, sin_h * sin_phi, cos_h), n);
   return 2.0f * kd_dot(wo, h) * h - wo;
 }
 #endif
@@ -99,49 +104,58 @@ KD_INLINE float pt_fresnel_dielectric(float cos_i, float cos_t, float eta_i, flo
  * the specification's G is the height-correlated Smith masking-shadowing function,
  * 2 cos_o cos_i / (cos_o sqrt(a2 + (1 - a2) cos_i^2) + cos_i sqrt(a2 + (1 - a2) cos_o^2)), not the
  * separable one of the rough conductor. Also the pdf of pt_ggx_sample_wi and wo . h. */
-KD_INLINE float pt_gltf_specular(float roughness, float3 n, float3 wo, float3 wi, float* pdf, float* o_h) {
+KD_LANE_FN kd_lane pt_gltf_specular(kd_lane roughness, kd_lane3 n, kd_lane3 wo, kd_lane3 wi, kd_lane* pdf,
+                                    kd_lane* o_h) {
   *pdf = 0.0f;
   *o_h = 1.0f;
-  float cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
-  if (cos_o <= 0.0f || cos_i <= 0.0f) return 0.0f;
-  float alpha2 = pt_ggx_alpha2(roughness);
-  float d = pt_ggx_half_vector_d(alpha2, n, wo, wi, pdf, o_h);
-  float g_denominator = cos_o * sqrt(alpha2 + (1.0f - alpha2) * cos_i * cos_i) +
-                        cos_i * sqrt(alpha2 + (1.0f - alpha2) * cos_o * cos_o);
-  return d * cos_i / (2.0f * g_denominator);
+  kd_lane cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
+  KD_LANE_MASK below = (cos_o <= 0.0f) | (cos_i <= 0.0f);
+  if (!kd_any(!below)) return (kd_lane)0.0f;
+  kd_lane alpha2 = pt_ggx_alpha2(roughness);
+  kd_lane d_pdf, d_o_h;
+  kd_lane d = pt_ggx_half_vector_d(alpha2, n, wo, wi, &d_pdf, &d_o_h);
+  kd_lane g_denominator = cos_o * sqrt(alpha2 + (1.0f - alpha2) * cos_i * cos_i) +
+                          cos_i * sqrt(alpha2 + (1.0f - alpha2) * cos_o * cos_o);
+  *pdf = kd_select(below, *pdf, d_pdf);
+  *o_h = kd_select(below, *o_h, d_o_h);
+  return kd_select(below, (kd_lane)0.0f, d * cos_i / (2.0f * g_denominator));
 }
 /* The dielectric's Schlick Fresnel, f0 from its index of refraction (0.04 at glTF's 1.5). */
-KD_INLINE float pt_gltf_dielectric_fresnel(float ior, float cos_theta) {
-  float r = (ior - 1.0f) / (ior + 1.0f);
-  float f0 = r * r;
+KD_LANE_FN kd_lane pt_gltf_dielectric_fresnel(kd_lane ior, kd_lane cos_theta) {
+  kd_lane r = (ior - 1.0f) / (ior + 1.0f);
+  kd_lane f0 = r * r;
   return f0 + (1.0f - f0) * pt_schlick_weight(cos_theta);
 }
 /* Probability of drawing wi from the GGX lobe rather than the cosine one: the metal's weight plus
  * the dielectric's specular share at wo, estimated with Fresnel at wo . n in place of wo . h (the
  * layer reflects F, the base (1 - F) times its colour), so that a sample's weight stays close to
  * the albedo whichever lobe drew it. */
-KD_INLINE float pt_gltf_ggx_probability(const PtMaterial* m, float3 color, float cos_o) {
-  float f = pt_gltf_dielectric_fresnel(m->ior, cos_o);
-  float diffuse = (1.0f - f) * pt_luminance(color);
-  float p_specular = f + diffuse > 0.0f ? f / (f + diffuse) : 1.0f;
-  return m->metallic + (1.0f - m->metallic) * p_specular;
+KD_LANE_FN kd_lane pt_gltf_ggx_probability(kd_lane metallic, kd_lane ior, kd_lane3 color, kd_lane cos_o) {
+  kd_lane f = pt_gltf_dielectric_fresnel(ior, cos_o);
+  kd_lane diffuse = (1.0f - f) * pt_luminance(color);
+  kd_lane p_specular = kd_select(f + diffuse > 0.0f, f / (f + diffuse), (kd_lane)1.0f);
+  return metallic + (1.0f - metallic) * p_specular;
 }
 /* f * cos(wi) and pdf of glTF metallic-roughness (the specification's Appendix B):
  * mix(dielectric, metal, metallic) with metal = specular * Schlick(color, wo . h) and
  * dielectric = (1 - F) color / pi + F specular, F = Schlick(f0 of ior, wo . h). The pdf is the
  * mixture of the two lobes pt_bsdf_sample draws from. */
-KD_INLINE float3 pt_metal_rough_eval(const PtMaterial* m, float3 color, float3 n, float3 wo, float3 wi, float* pdf) {
-  float ggx_pdf, o_h;
-  float specular = pt_gltf_specular(m->roughness, n, wo, wi, &ggx_pdf, &o_h);
-  float cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
+KD_LANE_FN kd_lane3 pt_metal_rough_eval(kd_lane roughness, kd_lane ior, kd_lane metallic, kd_lane3 color, kd_lane3 n,
+                                        kd_lane3 wo, kd_lane3 wi, kd_lane* pdf) {
+  kd_lane ggx_pdf, o_h;
+  kd_lane specular = pt_gltf_specular(roughness, n, wo, wi, &ggx_pdf, &o_h);
+  kd_lane cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
   *pdf = 0.0f;
-  if (cos_o <= 0.0f || cos_i <= 0.0f) return kd_splat3(0.0f);
-  float3 metal = pt_schlick(color, o_h) * specular;
-  float f = pt_gltf_dielectric_fresnel(m->ior, o_h);
-  float3 dielectric = color * ((1.0f - f) * cos_i * PT_INV_PI) + kd_splat3(f * specular);
-  float p_ggx = pt_gltf_ggx_probability(m, color, cos_o);
-  *pdf = p_ggx * ggx_pdf + (1.0f - p_ggx) * cos_i * PT_INV_PI;
-  return m->metallic * metal + (1.0f - m->metallic) * dielectric;
+  KD_LANE_MASK below = (cos_o <= 0.0f) | (cos_i <= 0.0f);
+  kd_lane3 none = KD_LANE3(0.0f, 0.0f, 0.0f);
+  if (!kd_any(!below)) return none;
+  kd_lane3 metal = pt_schlick(color, o_h) * specular;
+  kd_lane f = pt_gltf_dielectric_fresnel(ior, o_h);
+  kd_lane f_specular = f * specular;
+  kd_lane3 dielectric = color * ((1.0f - f) * cos_i * PT_INV_PI) + KD_LANE3(f_specular, f_specular, f_specular);
+  kd_lane p_ggx = pt_gltf_ggx_probability(metallic, ior, color, cos_o);
+  *pdf = kd_select(below, *pdf, p_ggx * ggx_pdf + (1.0f - p_ggx) * cos_i * PT_INV_PI);
+  return kd_select(below, none, metallic * metal + (1.0f - metallic) * dielectric);
 }
 #endif
 
@@ -150,7 +164,8 @@ KD_INLINE int pt_is_delta(uint type) { return type == PT_MIRROR || type == PT_DI
 /* f * |cos(wi)| for the non-delta lobes, and the pdf pt_bsdf_sample would give wi. */
 KD_INLINE float3 pt_bsdf_eval(const PtMaterial* m, float3 color, float3 n, float3 wo, float3 wi, float* pdf) {
 #ifdef KD_FEATURE_METALLIC_ROUGHNESS
-  if (m->type == PT_METALLIC_ROUGHNESS) return pt_metal_rough_eval(m, color, n, wo, wi, pdf);
+  if (m->type == PT_METALLIC_ROUGHNESS)
+    return pt_metal_rough_eval(m->roughness, m->ior, m->metallic, color, n, wo, wi, pdf);
 #endif
 #ifdef KD_FEATURE_GLOSSY
   if (m->type == PT_ROUGH_CONDUCTOR) return pt_ggx_eval(color, m->roughness, n, wo, wi, pdf);
@@ -212,11 +227,11 @@ KD_INLINE PtBsdfSample pt_bsdf_sample(const PtMaterial* m, float3 color, float3 
 #endif
 #ifdef KD_FEATURE_METALLIC_ROUGHNESS
   if (m->type == PT_METALLIC_ROUGHNESS) {
-    if (u_lobe < pt_gltf_ggx_probability(m, color, kd_dot(n, wo)))
+    if (u_lobe < pt_gltf_ggx_probability(m->metallic, m->ior, color, kd_dot(n, wo)))
       s.wi = pt_ggx_sample_wi(m->roughness, n, wo, u1, u2);
     else
       s.wi = pt_sample_cosine(n, u1, u2);
-    float3 f_cos = pt_metal_rough_eval(m, color, n, wo, s.wi, &s.pdf);
+    float3 f_cos = pt_metal_rough_eval(m->roughness, m->ior, m->metallic, color, n, wo, s.wi, &s.pdf);
     s.weight = s.pdf > 0.0f ? f_cos / s.pdf : kd_splat3(0.0f);
     return s;
   }

@@ -1,6 +1,6 @@
 // Eight floats side by side in one AVX2 register: the lane type with which the host's paths in
 // lanes (path_lanes.h) instantiate the device code's lane functions (kernels/kd_lane.h). Its
-// operators and the few built-ins those functions call (sqrt, fabs, fmax, fmin, rint, copysign)
+// operators and the few built-ins those functions call (sqrt, fabs, fmax, fmin, clamp, rint, copysign)
 // give each lane what the float operation gives, bit for bit: IEEE arithmetic with no contraction
 // into FMA (render_host_pixels.cpp's flags), correctly rounded sqrt and division, exact selects,
 // and fmax and fmin with kernels/kd_vector.h's answers for NaN and signed zeros.
@@ -86,6 +86,8 @@ struct Float8 {
     const FloatVector smaller = a.v < b.v ? a.v : b.v;
     return Float8(b.v != b.v ? a.v : smaller);
   }
+  // kernels/kd_vector.h's clamp
+  friend Float8 clamp(Float8 x, Float8 lo, Float8 hi) { return fmin(fmax(x, lo), hi); }
 };
 typedef kd_vec3<Float8> Float8x3;
 

@@ -123,6 +123,46 @@ inline void shaded_lane_by_lane(Paths& ps, int lanes) {
   }
 }
 
+// The BSDF of a surface the lanes shade: Lambertian of colour `color`, or where `metal_rough` is
+// set the glTF material of that base colour and the other three.
+struct LaneBsdf {
+  Mask8 metal_rough;
+  Float8x3 color;
+  Float8 roughness, ior, metallic;
+};
+
+// pt_bsdf_eval for the lanes' BSDFs: f * cos(wi), and the pdf of sampling wi.
+inline Float8x3 bsdf_eval(const LaneBsdf& m, Float8x3 n, Float8x3 wo, Float8x3 wi, Float8* pdf) {
+  const Float8 cos_i = kd_dot(n, wi);
+  *pdf = kd_select(cos_i <= 0.0f, Float8(0.0f), cos_i * PT_INV_PI);
+  Float8x3 f_cos = kd_select(cos_i <= 0.0f, Float8x3{}, m.color * (cos_i * PT_INV_PI));
+  if (kd_any(m.metal_rough)) {
+    Float8 metal_rough_pdf;
+    const Float8x3 metal_rough = pt_metal_rough_eval(m.roughness, m.ior, m.metallic, m.color, n, wo, wi, &metal_rough_pdf);
+    *pdf = kd_select(m.metal_rough, metal_rough_pdf, *pdf);
+    f_cos = kd_select(m.metal_rough, metal_rough, f_cos);
+  }
+  return f_cos;
+}
+
+// pt_bsdf_sample for the lanes' BSDFs (neither has a delta lobe or transmits): the direction,
+// with its pdf and weight.
+inline Float8x3 bsdf_sample(const LaneBsdf& m, Float8x3 n, Float8x3 wo, Float8 u1, Float8 u2, Float8 u_lobe, Float8* pdf,
+                            Float8x3* weight) {
+  Float8x3 wi = pt_sample_cosine(n, u1, u2);
+  *pdf = fmax(kd_dot(n, wi), 0.0f) * PT_INV_PI;
+  *weight = kd_select(*pdf > 0.0f, m.color, Float8x3{});
+  if (kd_any(m.metal_rough)) {
+    const Mask8 ggx = m.metal_rough & (u_lobe < pt_gltf_ggx_probability(m.metallic, m.ior, m.color, kd_dot(n, wo)));
+    if (kd_any(ggx)) wi = kd_select(ggx, pt_ggx_sample_wi(m.roughness, n, wo, u1, u2), wi);
+    Float8 metal_rough_pdf;
+    const Float8x3 f_cos = pt_metal_rough_eval(m.roughness, m.ior, m.metallic, m.color, n, wo, wi, &metal_rough_pdf);
+    *pdf = kd_select(m.metal_rough, metal_rough_pdf, *pdf);
+    *weight = kd_select(m.metal_rough, kd_select(metal_rough_pdf > 0.0f, f_cos / metal_rough_pdf, Float8x3{}), *weight);
+  }
+  return wi;
+}
+
 // Whether next-event estimation is pt_next_event on the triangle lights, with their emission
 // untextured, for every path: then it runs in lanes (next_event_on_triangles).
 inline bool next_event_on_triangles_in_lanes(const PtRenderParams* params) {
@@ -130,11 +170,11 @@ inline bool next_event_on_triangles_in_lanes(const PtRenderParams* params) {
 }
 
 // pt_next_event for the lanes of `active`, shading point p (normal n, facing geometric normal
-// ng_facing, Lambertian colour `color`, throughput beta), with the bounce's light-pick and
-// light values: the shadow rays into ps.
+// ng_facing, BSDF m seen from wo, throughput beta), with the bounce's light-pick and light values:
+// the shadow rays into ps.
 inline void next_event_on_triangles(Paths& ps, const PtSceneData* scene, const PtRenderParams* params, Mask8 active,
                                     Float8 light_pick, Float8 light_v, Float8x3 p, Float8x3 n, Float8x3 ng_facing,
-                                    Float8x3 color, Float8x3 beta) {
+                                    Float8x3 wo, const LaneBsdf& m, Float8x3 beta) {
   // the light pick's search, lane by lane
   alignas(32) float light_u[kLanes];
   store(light_u, light_pick);
@@ -173,10 +213,8 @@ inline void next_event_on_triangles(Paths& ps, const PtSceneData* scene, const P
   }
   const Float8 cos_light = -kd_dot(light_normal, wi);
   ok = ok & !(cos_light <= 0.0f);
-  // pt_bsdf_eval's Lambertian lobe
-  const Float8 cos_i = kd_dot(n, wi);
-  const Float8 pdf = kd_select(cos_i <= 0.0f, Float8(0.0f), cos_i * PT_INV_PI);
-  const Float8x3 f_cos = kd_select(cos_i <= 0.0f, Float8x3{}, color * (cos_i * PT_INV_PI));
+  Float8 pdf;
+  const Float8x3 f_cos = bsdf_eval(m, n, wo, wi, &pdf);
   ok = ok & !(pdf <= 0.0f) & !(kd_dot(wi, ng_facing) <= 0.0f);
   if (!kd_any(ok)) return;
   ps.shadow |= bits(ok);
@@ -193,8 +231,8 @@ inline void next_event_on_triangles(Paths& ps, const PtSceneData* scene, const P
 }
 
 // pt_next_event_any for the lanes set in `lanes`, one after another (any light: the environment,
-// punctual lights, textured emission): the shading point and material as next_event_on_triangles
-// takes them, with the bounce and each lane's material number.
+// punctual lights, textured emission): the shading point as next_event_on_triangles takes it,
+// with the bounce, each lane's material number and colour.
 inline void next_event_lane_by_lane(Paths& ps, int lanes, const PtSceneData* scene, const PtRenderParams* params,
                                     Int8 material, Int8 bounce, Float8x3 p, Float8x3 n, Float8x3 ng_facing,
                                     Float8x3 wo, Float8x3 color, Float8x3 beta) {
@@ -230,7 +268,7 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   const float* material_floats = reinterpret_cast<const float*>(scene->materials);
   const int32_t* material_words = reinterpret_cast<const int32_t*>(scene->materials);
   const Int8 type = gather(material_words + 3, material * 16, active);
-  Mask8 in_lanes = (type == (int32_t)PT_DIFFUSE) | (type == (int32_t)PT_EMISSIVE);
+  Mask8 in_lanes = (type == (int32_t)PT_DIFFUSE) | (type == (int32_t)PT_EMISSIVE) | (type == (int32_t)PT_METALLIC_ROUGHNESS);
   if (PT_USES(params, kPlainMaterialFeatures)) {
     // untextured and opaque: what pt_apply_textures, pt_alpha_passes and pt_textured_emission leave as it is
     const Int8 words = material * 16;
@@ -267,12 +305,20 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
     const Float8x3 unit = kd_normalize(ns);
     n = kd_select(kd_dot(ns, ns) > 0.0f, kd_select(kd_dot(unit, ng_facing) < 0.0f, -unit, unit), ng_facing);
   }
-  const Float8x3 color = gather3(material_floats, material, 16, 0, active);
+  LaneBsdf bsdf;
+  bsdf.color = gather3(material_floats, material, 16, 0, active);
+  bsdf.metal_rough = active & (type == (int32_t)PT_METALLIC_ROUGHNESS);
+  if (kd_any(bsdf.metal_rough)) {
+    const Int8 words = material * 16;
+    bsdf.roughness = gather(material_floats + PATH_LANES_MATERIAL_WORD(roughness), words, bsdf.metal_rough);
+    bsdf.ior = gather(material_floats + PATH_LANES_MATERIAL_WORD(ior), words, bsdf.metal_rough);
+    bsdf.metallic = gather(material_floats + PATH_LANES_MATERIAL_WORD(metallic), words, bsdf.metal_rough);
+  }
   const Int8 bounce = load(ps.bounce);
   const int first_hits = bits(active & (bounce == 0));
   for (int l = 0; l < kLanes; ++l)
     if (first_hits >> l & 1) {
-      ps.path[l].albedo = KD_FLOAT3(color.x[l], color.y[l], color.z[l]);
+      ps.path[l].albedo = lane(bsdf.color, l);
       ps.path[l].normal = KD_FLOAT3(n.x[l], n.y[l], n.z[l]);
       ps.path[l].depth = t[l];
     }
@@ -314,14 +360,15 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   }
   if (next_event_on_triangles_in_lanes(params)) {
     next_event_on_triangles(ps, scene, params, active, value(PT_DIM_LIGHT_PICK), value(PT_DIM_LIGHT_V), p, n, ng_facing,
-                            color, beta);
+                            wo, bsdf, beta);
   } else {
-    next_event_lane_by_lane(ps, bits(active), scene, params, material, bounce, p, n, ng_facing, wo, color, beta);
+    next_event_lane_by_lane(ps, bits(active), scene, params, material, bounce, p, n, ng_facing, wo, bsdf.color, beta);
   }
-  // the BSDF sample (pt_bsdf_sample's Lambertian lobe)
-  const Float8x3 wi = pt_sample_cosine(n, bsdf_u, bsdf_v);
-  const Float8 pdf = fmax(kd_dot(n, wi), 0.0f) * PT_INV_PI;
-  const Float8x3 weight = kd_select(pdf > 0.0f, color, Float8x3{});
+  // the BSDF sample (the glTF material's lobe value drawn only where a lane has it)
+  Float8 pdf;
+  Float8x3 weight;
+  const Float8 u_lobe = kd_any(bsdf.metal_rough & active) ? value(PT_DIM_LOBE) : Float8(0.0f);
+  const Float8x3 wi = bsdf_sample(bsdf, n, wo, bsdf_u, bsdf_v, u_lobe, &pdf, &weight);
   const Float8 side = kd_dot(wi, ng_facing);
   active = active & !((pt_max3(weight) <= 0.0f) | (side <= 0.0f));
   store3(ps.tx, ps.ty, ps.tz, kd_select(active, beta * weight, beta));

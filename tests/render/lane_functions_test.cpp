@@ -4,6 +4,8 @@
 // branch points), with the lanes of a group taking different sides of each select. The host's
 // paths in lanes rely on it for a film equal to the kernel's. Compiled for x86-64-v3 without
 // contraction into FMA, as the host's lanes are.
+#define KD_FEATURE_METALLIC_ROUGHNESS  // the glTF material's functions (kernels/pt_bsdf.h)
+#include <kernels/pt_bsdf.h>
 #include <kernels/pt_sampling.h>
 #include <kernels/pt_spherical_triangle.h>
 
@@ -199,6 +201,47 @@ TEST(LaneFunctions, SphericalTrianglesAndTheirSamples) {
   // both sampling techniques were exercised
   EXPECT_GT(spherical_lanes, kGroups);
   EXPECT_LT(spherical_lanes, kGroups * kLanes / 2);
+}
+
+// The glTF material: directions on both sides of the normal and grazing ones, roughness from a
+// mirror's to 1 (and the hard values), indices from 1 up, metallic from 0 to 1.
+TEST(LaneFunctions, GltfMaterialEvaluationAndSamples) {
+  if (!has_avx2()) GTEST_SKIP() << "the lanes need AVX2";
+  Arguments arguments(5);
+  Mismatches mismatches;
+  int evaluated_lanes = 0;
+  for (int g = 0; g < kGroups; ++g) {
+    float3 color[kLanes], n[kLanes], wo[kLanes], wi[kLanes], f_cos[kLanes], sampled[kLanes];
+    float roughness[kLanes], ior[kLanes], metallic[kLanes], u1[kLanes], u2[kLanes], pdf[kLanes], p_ggx[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      color[l] = KD_FLOAT3(arguments.unit(), arguments.unit(), arguments.unit());
+      n[l] = arguments.unit3();
+      wo[l] = arguments.unit3();
+      wi[l] = l == 6 ? n[l] : arguments.unit3();
+      if (l == 5) wo[l] = kd_normalize(wo[l] - kd_dot(wo[l], n[l]) * n[l]);  // grazing
+      roughness[l] = l < 4 ? arguments.unit() : l == 4 ? 0.0f : arguments.next(1.0f);
+      ior[l] = 1.0f + 1.5f * arguments.unit();
+      metallic[l] = l % 3 == 0 ? 0.0f : arguments.unit();
+      u1[l] = arguments.unit();
+      u2[l] = arguments.unit();
+      f_cos[l] = pt_metal_rough_eval(roughness[l], ior[l], metallic[l], color[l], n[l], wo[l], wi[l], &pdf[l]);
+      evaluated_lanes += pdf[l] > 0.0f;
+      p_ggx[l] = pt_gltf_ggx_probability(metallic[l], ior[l], color[l], kd_dot(n[l], wo[l]));
+      sampled[l] = pt_ggx_sample_wi(roughness[l], n[l], wo[l], u1[l], u2[l]);
+    }
+    Float8 lane_pdf;
+    const Float8x3 lane_f_cos = pt_metal_rough_eval(lanes(roughness), lanes(ior), lanes(metallic), lanes3(color),
+                                                    lanes3(n), lanes3(wo), lanes3(wi), &lane_pdf);
+    mismatches.compare(lane_f_cos, f_cos);
+    mismatches.compare(lane_pdf, pdf);
+    mismatches.compare(pt_gltf_ggx_probability(lanes(metallic), lanes(ior), lanes3(color), kd_dot(lanes3(n), lanes3(wo))),
+                       p_ggx);
+    mismatches.compare(pt_ggx_sample_wi(lanes(roughness), lanes3(n), lanes3(wo), lanes(u1), lanes(u2)), sampled);
+  }
+  EXPECT_EQ(mismatches.count, 0);
+  // both sides of the evaluation's early exit were taken
+  EXPECT_GT(evaluated_lanes, kGroups);
+  EXPECT_LT(evaluated_lanes, kGroups * kLanes);
 }
 
 }  // namespace

@@ -128,6 +128,30 @@ KD_INLINE void pt_shadow_towards(PtPath* path, KD_GLOBAL const PtRenderParams* p
   path->shadow_pending = 1;
 }
 
+/* The light sample towards the environment or a punctual light, for a kind number u past the
+ * triangle lights' share (the environment's share first, then the punctual lights', the same
+ * number rescaled picking one of them) and the environment's pair of sample values u_env.
+ * Returns 0 where u picks no light. */
+KD_INLINE int pt_sample_other_light(PtLightSample* ls, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
+                                 float3 p, float u, float2 u_env) {
+#ifdef KD_FEATURE_ENVIRONMENT
+  if (u < params->select_environment) {
+    *ls = pt_env_sample_light(scene->env_texels, scene->env_cdf, params, p, u_env);
+    return 1;
+  }
+  u -= params->select_environment;
+#endif
+#ifdef KD_FEATURE_PUNCTUAL
+  float rest = 1.0f - params->select_triangles - params->select_environment;
+  if (params->punctual_count > 0 && rest > 0.0f) {
+    *ls = pt_punctual_sample_light(scene->punctuals, params, p, fmin(u / rest, 0.99999994f));
+    return 1;
+  }
+#endif
+  (void)ls, (void)scene, (void)params, (void)p, (void)u, (void)u_env;
+  return 0;
+}
+
 /* Picks a kind of light with the probabilities in params (its own sample dimension; rescaled, the
  * same number then picks a punctual light) and estimates its direct light. */
 KD_INLINE void pt_next_event_any(PtPath* path, const PtSceneData* scene, KD_GLOBAL const PtRenderParams* params,
@@ -147,21 +171,12 @@ KD_INLINE void pt_next_event_any(PtPath* path, const PtSceneData* scene, KD_GLOB
   float u = pt_bounce_sample(samples, PT_DIM_LIGHT_TYPE);
 #endif
 #ifdef KD_FEATURE_ENVIRONMENT
-  if (u < params->select_environment) {
-    pt_shadow_towards(path, params, m, color, p, n, ng, wo,
-                      pt_env_sample_light(scene->env_texels, scene->env_cdf, params, p,
-                                          pt_bounce_sample2(samples, PT_DIM_ENV_U)));
-    return;
-  }
-  u -= params->select_environment;
+  float2 u_env = pt_bounce_sample2(samples, PT_DIM_ENV_U);
+#else
+  float2 u_env = KD_FLOAT2(0.0f, 0.0f);
 #endif
-#ifdef KD_FEATURE_PUNCTUAL
-  float rest = 1.0f - params->select_triangles - params->select_environment;
-  if (params->punctual_count > 0 && rest > 0.0f) {
-    pt_shadow_towards(path, params, m, color, p, n, ng, wo,
-                      pt_punctual_sample_light(scene->punctuals, params, p, fmin(u / rest, 0.99999994f)));
-  }
-#endif
+  PtLightSample ls;
+  if (pt_sample_other_light(&ls, scene, params, p, u, u_env)) pt_shadow_towards(path, params, m, color, p, n, ng, wo, ls);
 }
 #endif
 

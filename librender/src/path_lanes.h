@@ -64,6 +64,10 @@ inline void store3(float* x, float* y, float* z, Float8x3 v) {
   store(y, v.y);
   store(z, v.z);
 }
+// The same, in the lanes of the mask only.
+inline void store3(Mask8 lanes, float* x, float* y, float* z, Float8x3 v) {
+  store3(x, y, z, kd_select(lanes, v, load3(x, y, z)));
+}
 // Three consecutive floats of each lane's record (`words` floats each, numbered by `record`) from
 // float `first` on, in the lanes of the mask.
 inline Float8x3 gather3(const float* base, Int8 record, int words, int first, Mask8 lanes) {
@@ -163,12 +167,6 @@ inline Float8x3 bsdf_sample(const LaneBsdf& m, Float8x3 n, Float8x3 wo, Float8 u
   return wi;
 }
 
-// Whether next-event estimation is pt_next_event on the triangle lights, with their emission
-// untextured, for every path: then it runs in lanes (next_event_on_triangles).
-inline bool next_event_on_triangles_in_lanes(const PtRenderParams* params) {
-  return params->select_triangles == 1.0f && !PT_USES(params, PT_FEATURE_EMISSIVE_TEXTURE);
-}
-
 // pt_next_event for the lanes of `active`, shading point p (normal n, facing geometric normal
 // ng_facing, BSDF m seen from wo, throughput beta), with the bounce's light-pick and light values:
 // the shadow rays into ps.
@@ -225,9 +223,43 @@ inline void next_event_on_triangles(Paths& ps, const PtSceneData* scene, const P
   const Float8 weight = pt_mis_light(params, light_pdf, pdf);
   const Float8x3 shadow_origin = pt_offset_origin(p, ng_facing);
   const Float8x3 target = pt_offset_origin(p + sqrt(dist2) * wi, light_normal);
-  store3(ps.sox, ps.soy, ps.soz, shadow_origin);
-  store3(ps.ssx, ps.ssy, ps.ssz, target - shadow_origin);
-  store3(ps.scx, ps.scy, ps.scz, beta * f_cos * emission * (weight / light_pdf));
+  store3(ok, ps.sox, ps.soy, ps.soz, shadow_origin);
+  store3(ok, ps.ssx, ps.ssy, ps.ssz, target - shadow_origin);
+  store3(ok, ps.scx, ps.scy, ps.scz, beta * f_cos * emission * (weight / light_pdf));
+}
+
+// The rest of pt_next_event_any for the lanes of `others`, whose light kind number u (past the
+// triangle lights' share) picks the environment or a punctual light: the light samples lane by
+// lane (pt_sample_other_light, with the environment's pair of values u_env0, u_env1), then
+// pt_shadow_towards in lanes.
+inline void next_event_on_other_lights(Paths& ps, const PtSceneData* scene, const PtRenderParams* params, Mask8 others,
+                                       Float8 u, Float8 u_env0, Float8 u_env1, Float8x3 p, Float8x3 n,
+                                       Float8x3 ng_facing, Float8x3 wo, const LaneBsdf& m, Float8x3 beta) {
+  alignas(32) float wx[kLanes] = {}, wy[kLanes] = {}, wz[kLanes] = {}, distance[kLanes] = {};
+  alignas(32) float vx[kLanes] = {}, vy[kLanes] = {}, vz[kLanes] = {}, light_pdf[kLanes] = {};
+  int drawn = 0;
+  const int sampling = bits(others);
+  for (int l = 0; l < kLanes; ++l) {
+    PtLightSample ls;
+    if (!(sampling >> l & 1) || !pt_sample_other_light(&ls, scene, params, lane(p, l), u[l], KD_FLOAT2(u_env0[l], u_env1[l])))
+      continue;
+    drawn |= 1 << l;
+    wx[l] = ls.wi.x, wy[l] = ls.wi.y, wz[l] = ls.wi.z, distance[l] = ls.distance;
+    vx[l] = ls.value.x, vy[l] = ls.value.y, vz[l] = ls.value.z, light_pdf[l] = ls.pdf;
+  }
+  const Float8x3 wi = load3(wx, wy, wz), value = load3(vx, vy, vz);
+  Mask8 ok = lanes_of(drawn) & !(kd_dot(wi, ng_facing) <= 0.0f) & !(pt_max3(value) <= 0.0f);
+  if (!kd_any(ok)) return;
+  Float8 bsdf_pdf;
+  const Float8x3 f_cos = bsdf_eval(m, n, wo, wi, &bsdf_pdf);
+  ok = ok & !(pt_max3(f_cos) <= 0.0f);
+  if (!kd_any(ok)) return;
+  const Float8 pdf = load(light_pdf);
+  const Float8 weight = kd_select(pdf > 0.0f, pt_mis_light(params, pdf, bsdf_pdf), Float8(1.0f));
+  store3(ok, ps.sox, ps.soy, ps.soz, pt_offset_origin(p, ng_facing));
+  store3(ok, ps.ssx, ps.ssy, ps.ssz, wi * load(distance));
+  store3(ok, ps.scx, ps.scy, ps.scz, beta * f_cos * value * weight);
+  ps.shadow |= bits(ok);
 }
 
 // pt_next_event_any for the lanes set in `lanes`, one after another (any light: the environment,
@@ -358,11 +390,21 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
     active = active & !(roulette_lanes & (value(PT_DIM_ROULETTE) >= survive));
     beta = kd_select(roulette_lanes, beta / survive, beta);
   }
-  if (next_event_on_triangles_in_lanes(params)) {
-    next_event_on_triangles(ps, scene, params, active, value(PT_DIM_LIGHT_PICK), value(PT_DIM_LIGHT_V), p, n, ng_facing,
-                            wo, bsdf, beta);
-  } else {
+  // next-event estimation (pt_next_event_any): in lanes, but for textured emitters
+  if (PT_USES(params, PT_FEATURE_EMISSIVE_TEXTURE)) {
     next_event_lane_by_lane(ps, bits(active), scene, params, material, bounce, p, n, ng_facing, wo, bsdf.color, beta);
+  } else {
+    const Float8 u = params->select_triangles < 1.0f ? value(PT_DIM_LIGHT_TYPE) : Float8(0.0f);
+    const Mask8 triangles = active & (u < params->select_triangles);
+    if (kd_any(triangles)) {
+      next_event_on_triangles(ps, scene, params, triangles, value(PT_DIM_LIGHT_PICK), value(PT_DIM_LIGHT_V), p, n,
+                              ng_facing, wo, bsdf, beta);
+    }
+    const Mask8 others = active & !triangles;
+    if (kd_any(others)) {
+      next_event_on_other_lights(ps, scene, params, others, u - params->select_triangles, value(PT_DIM_ENV_U),
+                                 value(PT_DIM_ENV_V), p, n, ng_facing, wo, bsdf, beta);
+    }
   }
   // the BSDF sample (the glTF material's lobe value drawn only where a lane has it)
   Float8 pdf;

@@ -105,6 +105,34 @@ TEST(CpuIntegrator, CornellBoxWithGltfMaterialsInLanesMatchesTheKernelBitForBit)
             32u * 32u / 4);
 }
 
+// Every kind of light at once in lanes: the Cornell box's ceiling light, an environment seen
+// through the open front and a point light inside, so that the 8 lanes of a step pick different
+// kinds (triangle lights in lanes, the others sampled lane by lane and their shadow rays set up in
+// lanes), over diffuse and glTF surfaces.
+TEST(CpuIntegrator, CornellBoxUnderEveryKindOfLightInLanesMatchesTheKernelBitForBit) {
+  Scene scene = import_scene(cornell_obj(), ImportOptions{});
+  const uint32_t gltf = uint32_t(scene.materials.size());
+  scene.materials.push_back(metal_rough({0.7f, 0.7f, 0.3f}, 0.3f, 0.4f));
+  uint32_t diffuse = 0;
+  for (uint32_t& id : scene.material_ids) {
+    if (id < gltf && scene.materials[id].type == MaterialType::Diffuse && diffuse++ % 2) id = gltf;
+  }
+  Light point;
+  point.type = LightType::Point;
+  point.position = {400, 300, 200};
+  point.color = {3e4f, 2.5e4f, 2e4f};
+  scene.lights = {point};
+  RenderSettings settings = cornell_settings();
+  settings.width = settings.height = 32;
+  settings.spp = 16;
+  settings.environment = shared_environment(sun_environment());
+  EXPECT_GT(expect_host_matches_kernel(scene, settings,
+                                       {"-DKD_FEATURE_EMISSION", "-DKD_FEATURE_METALLIC_ROUGHNESS",
+                                        "-DKD_FEATURE_ENVIRONMENT", "-DKD_FEATURE_PUNCTUAL"},
+                                       2),
+            32u * 32u / 4);
+}
+
 // The lanes with alpha: every third of the Cornell box's diffuse triangles blended (alpha 0.5),
 // shaded lane by lane where a ray meets one and walked through by the shadow rays of every lane,
 // whose pass-through decisions hash the path's bounce; vertex normals tilted, so that some paths

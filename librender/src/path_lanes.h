@@ -53,9 +53,6 @@ static_assert(sizeof(PtMaterial) == 16 * 4 && KD_OFFSETOF(PtMaterial, base_color
               "PtMaterial: 16 words, base colour at 0, type at 3, emission at 4");
 // The word of a PtMaterial member.
 #define PATH_LANES_MATERIAL_WORD(member) (KD_OFFSETOF(PtMaterial, member) / 4)
-// The features under which a material is shaded in lanes only where it is untextured and opaque.
-constexpr uint32_t kPlainMaterialFeatures = PT_FEATURE_ALPHA | PT_FEATURE_TEXTURES | PT_FEATURE_METAL_ROUGH_TEXTURE |
-                                            PT_FEATURE_NORMAL_MAP | PT_FEATURE_EMISSIVE_TEXTURE;
 
 // The lanes' float3 from, and to, its coordinates' arrays.
 inline Float8x3 load3(const float* x, const float* y, const float* z) { return {load(x), load(y), load(z)}; }
@@ -132,8 +129,34 @@ inline void shaded_lane_by_lane(Paths& ps, int lanes) {
 struct LaneBsdf {
   Mask8 metal_rough;
   Float8x3 color;
-  Float8 roughness, ior, metallic;
+  Float8 roughness = 0.0f, ior = 0.0f, metallic = 0.0f;
 };
+
+// pt_apply_textures for the lanes set in `lanes`, one after another: each lane's material and
+// hit (triangle, barycentrics u and v, geometric normal ng and its facing form), its BSDF's colour,
+// roughness and metallic and its shading normal n textured in place.
+inline void apply_textures_lane_by_lane(int lanes, const PtSceneData* scene, Int8 material, Int8 triangle, Float8 u,
+                                        Float8 v, Float8x3 ng, Float8x3 ng_facing, LaneBsdf* bsdf, Float8x3* n) {
+  alignas(32) float cx[kLanes], cy[kLanes], cz[kLanes], nx[kLanes], ny[kLanes], nz[kLanes];
+  alignas(32) float roughness[kLanes], metallic[kLanes];
+  store3(cx, cy, cz, bsdf->color);
+  store3(nx, ny, nz, *n);
+  store(roughness, bsdf->roughness);
+  store(metallic, bsdf->metallic);
+  for (int l = 0; l < kLanes; ++l) {
+    if (!(lanes >> l & 1)) continue;
+    PtMaterial m = scene->materials[material.v[l]];
+    float3 color = KD_FLOAT3(cx[l], cy[l], cz[l]), normal = KD_FLOAT3(nx[l], ny[l], nz[l]);
+    pt_apply_textures(&m, &color, &normal, lane(ng, l), lane(ng_facing, l), scene->uvs, scene->tangents,
+                      scene->textures, scene->texels, scene->indices + 3 * triangle.v[l], u[l], v[l]);
+    cx[l] = color.x, cy[l] = color.y, cz[l] = color.z, nx[l] = normal.x, ny[l] = normal.y, nz[l] = normal.z;
+    roughness[l] = m.roughness, metallic[l] = m.metallic;
+  }
+  bsdf->color = load3(cx, cy, cz);
+  *n = load3(nx, ny, nz);
+  bsdf->roughness = load(roughness);
+  bsdf->metallic = load(metallic);
+}
 
 // pt_bsdf_eval for the lanes' BSDFs: f * cos(wi), and the pdf of sampling wi.
 inline Float8x3 bsdf_eval(const LaneBsdf& m, Float8x3 n, Float8x3 wo, Float8x3 wi, Float8* pdf) {
@@ -264,10 +287,11 @@ inline void next_event_on_other_lights(Paths& ps, const PtSceneData* scene, cons
 
 // pt_next_event_any for the lanes set in `lanes`, one after another (any light: the environment,
 // punctual lights, textured emission): the shading point as next_event_on_triangles takes it,
-// with the bounce, each lane's material number and colour.
+// with the bounce, each lane's material number and BSDF (its textured values).
 inline void next_event_lane_by_lane(Paths& ps, int lanes, const PtSceneData* scene, const PtRenderParams* params,
                                     Int8 material, Int8 bounce, Float8x3 p, Float8x3 n, Float8x3 ng_facing,
-                                    Float8x3 wo, Float8x3 color, Float8x3 beta) {
+                                    Float8x3 wo, const LaneBsdf& bsdf, Float8x3 beta) {
+  const int metal_rough = bits(bsdf.metal_rough);
   for (int l = 0; l < kLanes; ++l) {
     if (!(lanes >> l & 1)) continue;
     PtPath& path = ps.path[l];
@@ -275,9 +299,10 @@ inline void next_event_lane_by_lane(Paths& ps, int lanes, const PtSceneData* sce
     path.throughput = lane(beta, l);
     path.shadow_pending = 0;
     const PtBounceSamples samples = pt_path_samples(&path, params);
-    const PtMaterial m = scene->materials[material.v[l]];
-    pt_next_event_any(&path, scene, params, &samples, &m, lane(color, l), lane(p, l), lane(n, l), lane(ng_facing, l),
-                      lane(wo, l));
+    PtMaterial m = scene->materials[material.v[l]];
+    if (metal_rough >> l & 1) m.roughness = bsdf.roughness[l], m.metallic = bsdf.metallic[l];  // as textured
+    pt_next_event_any(&path, scene, params, &samples, &m, lane(bsdf.color, l), lane(p, l), lane(n, l),
+                      lane(ng_facing, l), lane(wo, l));
     take_shadow_ray(ps, l);
   }
 }
@@ -301,13 +326,14 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   const int32_t* material_words = reinterpret_cast<const int32_t*>(scene->materials);
   const Int8 type = gather(material_words + 3, material * 16, active);
   Mask8 in_lanes = (type == (int32_t)PT_DIFFUSE) | (type == (int32_t)PT_EMISSIVE) | (type == (int32_t)PT_METALLIC_ROUGHNESS);
-  if (PT_USES(params, kPlainMaterialFeatures)) {
-    // untextured and opaque: what pt_apply_textures, pt_alpha_passes and pt_textured_emission leave as it is
-    const Int8 words = material * 16;
-    in_lanes = in_lanes & (gather(material_floats + PATH_LANES_MATERIAL_WORD(alpha_cutoff), words, active) == 0.0f);
-    for (size_t texture : {PATH_LANES_MATERIAL_WORD(texture), PATH_LANES_MATERIAL_WORD(metal_rough_texture),
-                           PATH_LANES_MATERIAL_WORD(normal_texture), PATH_LANES_MATERIAL_WORD(emissive_texture)})
-      in_lanes = in_lanes & !(gather(material_words + texture, words, active) >= 0);
+  // opaque (pt_alpha_passes lets no ray through), and no emission texture (pt_textured_emission)
+  if (PT_USES(params, PT_FEATURE_ALPHA)) {
+    in_lanes = in_lanes &
+               (gather(material_floats + PATH_LANES_MATERIAL_WORD(alpha_cutoff), material * 16, active) == 0.0f);
+  }
+  if (PT_USES(params, PT_FEATURE_EMISSIVE_TEXTURE)) {
+    in_lanes = in_lanes &
+               !(gather(material_words + PATH_LANES_MATERIAL_WORD(emissive_texture), material * 16, active) >= 0);
   }
   by_lane |= bits(active & !in_lanes);
   shade_lane_by_lane(ps, by_lane, scene, params, hits);
@@ -345,6 +371,15 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
     bsdf.roughness = gather(material_floats + PATH_LANES_MATERIAL_WORD(roughness), words, bsdf.metal_rough);
     bsdf.ior = gather(material_floats + PATH_LANES_MATERIAL_WORD(ior), words, bsdf.metal_rough);
     bsdf.metallic = gather(material_floats + PATH_LANES_MATERIAL_WORD(metallic), words, bsdf.metal_rough);
+  }
+  if (PT_USES(params, PT_FEATURE_TEXTURES)) {
+    const Int8 words = material * 16;
+    Mask8 textured = {};
+    for (size_t texture : {PATH_LANES_MATERIAL_WORD(texture), PATH_LANES_MATERIAL_WORD(metal_rough_texture),
+                           PATH_LANES_MATERIAL_WORD(normal_texture)})
+      textured = textured | (gather(material_words + texture, words, active) >= 0);
+    textured = textured & active;
+    if (kd_any(textured)) apply_textures_lane_by_lane(bits(textured), scene, material, tri, u, v, ng, ng_facing, &bsdf, &n);
   }
   const Int8 bounce = load(ps.bounce);
   const int first_hits = bits(active & (bounce == 0));
@@ -392,7 +427,7 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   }
   // next-event estimation (pt_next_event_any): in lanes, but for textured emitters
   if (PT_USES(params, PT_FEATURE_EMISSIVE_TEXTURE)) {
-    next_event_lane_by_lane(ps, bits(active), scene, params, material, bounce, p, n, ng_facing, wo, bsdf.color, beta);
+    next_event_lane_by_lane(ps, bits(active), scene, params, material, bounce, p, n, ng_facing, wo, bsdf, beta);
   } else {
     const Float8 u = params->select_triangles < 1.0f ? value(PT_DIM_LIGHT_TYPE) : Float8(0.0f);
     const Mask8 triangles = active & (u < params->select_triangles);

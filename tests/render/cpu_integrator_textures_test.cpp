@@ -1,7 +1,8 @@
 // The C++ build of the path tracer against the kernel (tests/render/cpu_integrator.h) with what a
 // textured glTF asset brings: a metallic-roughness sphere with base-colour (its alpha cut out),
 // metallic-roughness and normal textures, per-vertex normals and UVs (tangents from them), over a
-// diffuse floor under a directional light and a lamp with an emissive texture.
+// diffuse floor under a directional light and a lamp with an emissive texture; and the same with
+// the sphere opaque.
 
 #include "cpu_integrator.h"
 #include "light_scenes.h"
@@ -24,9 +25,11 @@ Texture pattern(uint32_t w, uint32_t h, int seed, bool holes) {
   return t;
 }
 
-TEST(CpuIntegrator, TexturedMetallicRoughnessAssetMatchesTheKernelBitForBit) {
+// The asset: the sphere's base-colour alpha cut out where `cut_out`, else opaque (then the
+// host's lanes shade it in lanes, its textures looked up lane by lane).
+Scene textured_asset(bool cut_out) {
   Material sphere = metal_rough({0.9f, 0.8f, 0.7f}, 0.5f, 0.4f);
-  sphere.alpha_mode = AlphaMode::Mask;
+  if (cut_out) sphere.alpha_mode = AlphaMode::Mask;
   sphere.diffuse_texture = 0;
   sphere.metal_rough_texture = 1;
   sphere.normal_texture = 2;
@@ -51,8 +54,25 @@ TEST(CpuIntegrator, TexturedMetallicRoughnessAssetMatchesTheKernelBitForBit) {
   scene.normals.resize(scene.positions.size(), Vec3{0, 1, 0});
   for (int quad = 0; quad < 2; ++quad) scene.uvs.insert(scene.uvs.end(), {{0, 0}, {0, 1}, {1, 1}, {1, 0}});
   scene.lights.push_back(directional_light({0.3f, -0.8f, -0.5f}, 3.0f));
+  return scene;
+}
+
+TEST(CpuIntegrator, TexturedMetallicRoughnessAssetMatchesTheKernelBitForBit) {
+  Scene scene = textured_asset(true);
   EXPECT_GT(expect_host_matches_kernel(scene, tiny_settings(24, 4),
                                        {"-DKD_FEATURE_EMISSION", "-DKD_FEATURE_METALLIC_ROUGHNESS", "-DKD_FEATURE_ALPHA",
+                                        "-DKD_FEATURE_TEXTURES", "-DKD_FEATURE_METAL_ROUGH_TEXTURE",
+                                        "-DKD_FEATURE_NORMAL_MAP", "-DKD_FEATURE_EMISSIVE_TEXTURE",
+                                        "-DKD_FEATURE_NORMALS", "-DKD_FEATURE_PUNCTUAL"}),
+            24u * 24u / 2);
+}
+
+TEST(CpuIntegrator, OpaqueTexturedMetallicRoughnessAssetMatchesTheKernelBitForBit) {
+  Scene scene = textured_asset(false);
+  RenderSettings settings = tiny_settings(24, 8);
+  settings.aov_albedo = settings.aov_normal = true;
+  EXPECT_GT(expect_host_matches_kernel(scene, settings,
+                                       {"-DKD_FEATURE_EMISSION", "-DKD_FEATURE_METALLIC_ROUGHNESS",
                                         "-DKD_FEATURE_TEXTURES", "-DKD_FEATURE_METAL_ROUGH_TEXTURE",
                                         "-DKD_FEATURE_NORMAL_MAP", "-DKD_FEATURE_EMISSIVE_TEXTURE",
                                         "-DKD_FEATURE_NORMALS", "-DKD_FEATURE_PUNCTUAL"}),

@@ -4,12 +4,14 @@
 // Determinism. One task sums all of a pixel's samples of a pass, in sample order, and the sums
 // are fixed-point integers, so the film depends neither on the thread count nor on the passes.
 //
-// The path tracer itself, compiled for this CPU, is render_host_pixels.cpp.
+// The path tracer itself, compiled for this CPU, is render_host_pixels.cpp. device_for_render
+// makes the host the default where it is the faster CPU path.
 #include "render_host_pixels.h"
 #include "render_internal.h"
 
 #include <kdray/clock.h>
 #include <kdray/error.h>
+#include <kdray/opencl_device.h>
 #include <kdray/render.h>
 #include <kdray/threads.h>
 #include <kdray/trace_opencl.h>
@@ -27,6 +29,7 @@
 #include <cstring>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace kdray {
 namespace {
@@ -75,6 +78,34 @@ class HostRender : public RenderWorker {
 
 }  // namespace
 
+namespace {
+bool cpu_has_x86_64_v3() {
+#ifdef KDRAY_HOST_PIXELS_HAVE_X86_64_V3
+  // The level's features that GCC and clang both name (clang 14 and 15 know no "x86-64-v3"); the
+  // CPUs that have them have the rest of it (F16C, LZCNT, MOVBE).
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2") &&
+         __builtin_cpu_supports("fma");
+#else
+  return false;
+#endif
+}
+}  // namespace
+
+std::string device_for_render() {
+  enum OpenCl { kNone, kCpuOnly, kGpu };
+  static const OpenCl opencl = [] {
+    try {
+      const std::vector<DeviceInfo> devices = list_devices();
+      if (std::any_of(devices.begin(), devices.end(), [](const DeviceInfo& d) { return d.is_gpu; })) return kGpu;
+      return devices.empty() ? kNone : kCpuOnly;
+    } catch (const Error&) {
+      return kNone;  // no OpenCL platform: the host renders without one
+    }
+  }();
+  if (opencl == kGpu) return "auto";
+  return cpu_has_x86_64_v3() || opencl == kNone ? kHostDevice : "auto";
+}
+
 HostPixelsBuild host_pixels_build(size_t gathered_floats) {
   const char* asked = std::getenv("KDRAY_HOST_ISA");
   const bool generic = asked != nullptr && std::string(asked) == "generic";
@@ -87,10 +118,7 @@ HostPixelsBuild host_pixels_build(size_t gathered_floats) {
     throw Error("", std::string("KDRAY_HOST_LANES is '") + lanes + "': the one value it takes is 'off'");
   }
 #ifdef KDRAY_HOST_PIXELS_HAVE_X86_64_V3
-  // The level's features that GCC and clang both name (clang 14 and 15 know no "x86-64-v3"); the
-  // CPUs that have them have the rest of it (F16C, LZCNT, MOVBE).
-  const bool x86_64_v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") &&
-                         __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("fma");
+  const bool x86_64_v3 = cpu_has_x86_64_v3();
   if (!generic && x86_64_v3 && !lanes_off && host_pixels_x86_64_v3::paths_in_lanes_apply(gathered_floats)) {
     return {host_pixels_x86_64_v3::render_pixels_in_lanes, "x86-64-v3, paths in lanes", true};
   }

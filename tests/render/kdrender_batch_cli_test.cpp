@@ -53,7 +53,8 @@ TEST_F(KdrenderBatch, FramesEqualSingleCommandsBitForBit) {
   };
   std::string text = "# frames of the Cornell box\n\n";
   for (const Case& c : cases) text += "  -o " + path(c.output) + c.line + "   # a comment\n";
-  test::ToolRun run = batch("equal.jobs", text, std::string(kDefaults) + " --json");
+  // the batch on PoCL, the single commands on the default device (the host here, without a GPU)
+  test::ToolRun run = batch("equal.jobs", text, std::string(kDefaults) + " --json --device cpu");
   ASSERT_EQ(run.exit_code, 0) << run.out;
   nlohmann::json report = nlohmann::json::parse(run.out);
   ASSERT_EQ(report["frames"].size(), cases.size());
@@ -97,7 +98,7 @@ TEST_F(KdrenderBatch, HostFramesTraceTheTreeCopiedOutOfItsFile) {
   EXPECT_EQ(report["skipped"], 2);
   EXPECT_EQ(report["tree_memory"], "file mapping");
 
-  run = batch("opencl.jobs", "-o " + path("c0.exr") + "\n", std::string(kDefaults) + " --json");
+  run = batch("opencl.jobs", "-o " + path("c0.exr") + " --device cpu\n", std::string(kDefaults) + " --json");
   ASSERT_EQ(run.exit_code, 0) << run.out;
   report = nlohmann::json::parse(run.out);
   EXPECT_EQ(report["tree_memory"], "file mapping");

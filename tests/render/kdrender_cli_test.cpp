@@ -27,9 +27,9 @@ class KdrenderCli : public test::CornellFilesTest<KdrenderCli> {
 };
 
 TEST_F(KdrenderCli, RendersPngAndReportsJsonWithAWarmSecondBuild) {
-  test::ToolRun first = kdrender(cornell(path("a.png"), "--spp 2 --json"));
+  test::ToolRun first = kdrender(cornell(path("a.png"), "--spp 2 --json --device cpu"));
   ASSERT_EQ(first.exit_code, 0) << first.out;
-  test::ToolRun second = kdrender(cornell(path("b.png"), "--spp 2 --json"));
+  test::ToolRun second = kdrender(cornell(path("b.png"), "--spp 2 --json --device cpu"));
   ASSERT_EQ(second.exit_code, 0) << second.out;
   nlohmann::json report = nlohmann::json::parse(second.out);
   EXPECT_EQ(report["build_source"], "disk cache");
@@ -163,12 +163,36 @@ TEST_F(KdrenderCli, TraversalsRenderTheSameFilmAndJsonNamesTheOneThatRan) {
   EXPECT_FALSE(fs::exists(path("host-robust.exr")));
 }
 
+// Naming no device: an OpenCL GPU where there is one, else the faster CPU path, the host on an
+// x86-64-v3 CPU (kdray::device_for_render); --json says which ran, and the film is PoCL's. An
+// option only OpenCL devices take keeps the render on OpenCL, and --threads is taken where the
+// host renders.
+TEST_F(KdrenderCli, WithNoDeviceNamedRendersOnTheFasterPath) {
+  const bool host = device_for_render() == kHostDevice;
+  test::ToolRun run = kdrender(cornell(path("default.exr"), "--spp 2 --seed 3 --json"));
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  const nlohmann::json report = nlohmann::json::parse(run.out);
+  EXPECT_EQ(report["device"] == "host", host) << report["device"];
+  if (host && __builtin_cpu_supports("avx2")) EXPECT_EQ(report["build_source"], "built in, x86-64-v3, paths in lanes");
+  ASSERT_EQ(kdrender(cornell(path("pocl.exr"), "--spp 2 --seed 3 --device cpu -q")).exit_code, 0);
+  EXPECT_EQ(read_film_exr(path("default.exr")).sums, read_film_exr(path("pocl.exr")).sums);
+
+  test::ToolRun wavefront = kdrender(cornell(path("wavefront.exr"), "--spp 1 --wavefront --json"));
+  ASSERT_EQ(wavefront.exit_code, 0) << wavefront.out;
+  EXPECT_NE(nlohmann::json::parse(wavefront.out)["device"], "host");
+  EXPECT_EQ(kdrender(cornell(path("threads.exr"), "--spp 1 --threads 2 -q")).exit_code, host ? 0 : 2);
+}
+
+// named, or as the default device where there is no OpenCL platform
 TEST_F(KdrenderCli, HostRendersWithoutAnOpenClPlatform) {
-  test::ToolRun run = test::run_command("OCL_ICD_VENDORS=" + test::shell_quoted(path("no-vendors")) + " " +
-                                        test::shell_quoted(test::tool_path("kdrender")) + " " +
-                                        cornell(path("no-opencl.png"), "--spp 1 --device host -q") + " 2>&1");
-  EXPECT_EQ(run.exit_code, 0) << run.out;
-  EXPECT_TRUE(fs::exists(path("no-opencl.png")));
+  for (const char* device : {"--device host", ""}) {
+    const std::string output = path(std::string("no-opencl") + (*device ? "-host" : "") + ".png");
+    test::ToolRun run = test::run_command("OCL_ICD_VENDORS=" + test::shell_quoted(path("no-vendors")) + " " +
+                                          test::shell_quoted(test::tool_path("kdrender")) + " " +
+                                          cornell(output, std::string("--spp 1 -q ") + device) + " 2>&1");
+    EXPECT_EQ(run.exit_code, 0) << device << ": " << run.out;
+    EXPECT_TRUE(fs::exists(output)) << device;
+  }
 }
 
 TEST_F(KdrenderCli, WithoutTheImageModuleFailsNamingTheOutputAndWritesNothing) {

@@ -1,7 +1,9 @@
 // --device: one vocabulary in every tool that runs on a device.
 //   host       kdray's own C++ code on the CPU, threads from --threads (kdtrace: libkdtree's
 //              traversal; kdrender: the C++ build of the path tracer, the OpenCL kernel's bits)
-//   auto       an OpenCL GPU if there is one, else the OpenCL CPU device
+//   auto       an OpenCL GPU if there is one, else the CPU: for kdrender its faster path
+//              (kdray::device_for_render: host on an x86-64-v3 CPU), for kdtrace the OpenCL CPU
+//              device
 //   cpu, gpu   the first OpenCL device of that type (cpu is PoCL)
 //   INDEX      an OpenCL device by its number in `--device list`
 //   all        every OpenCL device at once

@@ -165,15 +165,17 @@ Frame resolve_frame(const FrameOptions& o, EnvironmentCache& environments) {
   if (kdray::tool::device_kind(o.device.device) == kdray::tool::DeviceKind::List) {
     throw UsageError("--device list prints the devices; it renders nothing");
   }
-  kdray::tool::check_threads_option(o.device.device, o.device.threads);
-  if (o.device.device == kdray::kHostDevice &&
-      (o.device.local_size || o.device.short_stack_size || o.wavefront || o.traversal == "robust")) {
+  const bool opencl_only = o.device.local_size || o.device.short_stack_size || o.wavefront || o.traversal == "robust";
+  if (o.device.device == kdray::kHostDevice && opencl_only) {
     throw UsageError("--local-size, --stack-size, --wavefront and --traversal robust are for OpenCL devices, not "
                      "--device host");
   }
   if (o.output.empty()) throw UsageError("-o OUTPUT is required");
   if (!kdray::is_supported_image_path(o.output)) throw UsageError("-o " + o.output + ": use .exr, .png or .jpg");
   Frame frame{o.output, o.settings, o.device, 0};
+  // auto: a GPU, else the faster CPU path; OpenCL's own choice where an option is OpenCL's alone
+  if (frame.device.device == "auto" && !opencl_only) frame.device.device = kdray::device_for_render();
+  kdray::tool::check_threads_option(frame.device.device, frame.device.threads);
   frame.device.traversal = kdray::parse_traversal_path(o.traversal);
   kdray::RenderSettings& s = frame.settings;
   apply_aovs(o, s);

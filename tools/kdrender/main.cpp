@@ -1,7 +1,7 @@
-// kdrender: renders a .kdscene with its prebuilt .kdtree on an OpenCL device (PoCL on the CPU
-// by default) or on the host (the same code compiled as C++, the same image) to EXR (linear float, AOVs, exact sums, metadata) or PNG/JPEG (sRGB); renders a
-// batch of frames of one scene from a jobs file; merges EXRs of adjacent sample ranges exactly;
-// lists devices.
+// kdrender: renders a .kdscene with its prebuilt .kdtree on an OpenCL device or on the host (the
+// same code compiled as C++, the same image; the default where there is no GPU) to EXR (linear
+// float, AOVs, exact sums, metadata) or PNG/JPEG (sRGB); renders a batch of frames of one scene
+// from a jobs file; merges EXRs of adjacent sample ranges exactly; lists devices.
 //
 //   kdrender scene.kdscene scene.kdtree -o out.png --spp 64
 //   kdrender scene.kdscene scene.kdtree --jobs turntable.jobs --spp 16

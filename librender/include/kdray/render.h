@@ -30,6 +30,13 @@ using RenderProgress = std::function<void(uint32_t done, uint32_t total)>;
 // The device name that renders with the C++ build of the kernels' code on the CPU.
 constexpr const char* kHostDevice = "host";
 
+// The device a render that names no device runs on: "auto" (OpenCL's choice, the GPU) where an
+// OpenCL GPU is present; else kHostDevice where this CPU runs the host's x86-64-v3 build, which
+// renders 8 paths at a time in AVX2 lanes and is the faster of the CPU's two paths (BENCHMARKS.md,
+// "Paths in lanes"), or where no OpenCL platform is installed at all; else "auto" (PoCL). The
+// OpenCL devices are listed once per process.
+std::string device_for_render();
+
 // Renders the range; throws kdray::Error for bad settings (size, camera, bounces). With several
 // devices (device.device "all" or a list "0,1"), each renders consecutive sample ranges sized by
 // its measured speed into its own film, and the films' exact sums add up to the single-device

@@ -8,6 +8,8 @@
 
 #include <kdray/import.h>
 
+#include <vector>
+
 namespace kdray::test {
 namespace {
 
@@ -17,6 +19,20 @@ RenderSettings cornell_settings() {
   settings.sample_offset = 5;
   settings.seed = 7;
   return settings;
+}
+
+// Appends `materials` to the scene and hands them the Cornell box's diffuse triangles in turn: of
+// each run of materials.size() + 1 diffuse triangles, the first stays diffuse and the others take
+// the new materials in order.
+void share_diffuse_triangles(Scene& scene, const std::vector<Material>& materials) {
+  const uint32_t first = uint32_t(scene.materials.size());
+  scene.materials.insert(scene.materials.end(), materials.begin(), materials.end());
+  uint32_t diffuse = 0;
+  for (uint32_t& id : scene.material_ids) {
+    if (id >= first || scene.materials[id].type != MaterialType::Diffuse) continue;
+    const uint32_t kind = diffuse++ % uint32_t(materials.size() + 1);
+    if (kind) id = first + kind - 1;
+  }
 }
 
 TEST(CpuIntegrator, CornellBoxMatchesTheKernelBitForBitOnOneThread) {
@@ -49,19 +65,13 @@ TEST(CpuIntegrator, CornellBoxWithNormalsAndSpecularSurfacesInLanesMatchesTheKer
     const float tilt = 0.3f * float(i % 7) - 0.9f;
     scene.normals.push_back(i % 5 == 0 ? Vec3{0, 0, 0} : Vec3{tilt, 1.0f - 0.2f * float(i % 3), -tilt});
   }
-  const uint32_t specular = uint32_t(scene.materials.size());
+  std::vector<Material> specular;
   for (MaterialType type : {MaterialType::Mirror, MaterialType::RoughConductor, MaterialType::Dielectric}) {
-    Material material;
-    material.type = type;
-    material.roughness = 0.1f;
-    scene.materials.push_back(material);
+    specular.emplace_back();
+    specular.back().type = type;
+    specular.back().roughness = 0.1f;
   }
-  uint32_t diffuse = 0;
-  for (uint32_t& id : scene.material_ids) {
-    if (id >= specular || scene.materials[id].type != MaterialType::Diffuse) continue;
-    const uint32_t kind = diffuse++ % 4;  // 0 stays diffuse
-    if (kind) id = specular + kind - 1;
-  }
+  share_diffuse_triangles(scene, specular);
   RenderSettings settings = cornell_settings();
   settings.width = settings.height = 32;
   settings.spp = 16;
@@ -83,17 +93,10 @@ TEST(CpuIntegrator, CornellBoxWithGltfMaterialsInLanesMatchesTheKernelBitForBit)
     const float tilt = 0.25f * float(i % 5) - 0.5f;
     scene.normals.push_back(Vec3{tilt, 1.0f, 0.5f * tilt});
   }
-  const uint32_t gltf = uint32_t(scene.materials.size());
-  scene.materials.push_back(metal_rough({0.8f, 0.3f, 0.2f}, 0.0f, 1.0f));
-  scene.materials.push_back(metal_rough({0.2f, 0.5f, 0.7f}, 0.0f, 0.08f));
-  scene.materials.back().ior = 1.33f;
-  scene.materials.push_back(metal_rough({1.0f, 0.77f, 0.34f}, 0.5f, 0.3f));
-  uint32_t diffuse = 0;
-  for (uint32_t& id : scene.material_ids) {
-    if (id >= gltf || scene.materials[id].type != MaterialType::Diffuse) continue;
-    const uint32_t kind = diffuse++ % 4;  // 0 stays diffuse
-    if (kind) id = gltf + kind - 1;
-  }
+  Material smooth = metal_rough({0.2f, 0.5f, 0.7f}, 0.0f, 0.08f);
+  smooth.ior = 1.33f;
+  share_diffuse_triangles(scene, {metal_rough({0.8f, 0.3f, 0.2f}, 0.0f, 1.0f), smooth,
+                                  metal_rough({1.0f, 0.77f, 0.34f}, 0.5f, 0.3f)});
   RenderSettings settings = cornell_settings();
   settings.width = settings.height = 32;
   settings.spp = 16;
@@ -111,12 +114,7 @@ TEST(CpuIntegrator, CornellBoxWithGltfMaterialsInLanesMatchesTheKernelBitForBit)
 // lanes), over diffuse and glTF surfaces.
 TEST(CpuIntegrator, CornellBoxUnderEveryKindOfLightInLanesMatchesTheKernelBitForBit) {
   Scene scene = import_scene(cornell_obj(), ImportOptions{});
-  const uint32_t gltf = uint32_t(scene.materials.size());
-  scene.materials.push_back(metal_rough({0.7f, 0.7f, 0.3f}, 0.3f, 0.4f));
-  uint32_t diffuse = 0;
-  for (uint32_t& id : scene.material_ids) {
-    if (id < gltf && scene.materials[id].type == MaterialType::Diffuse && diffuse++ % 2) id = gltf;
-  }
+  share_diffuse_triangles(scene, {metal_rough({0.7f, 0.7f, 0.3f}, 0.3f, 0.4f)});
   Light point;
   point.type = LightType::Point;
   point.position = {400, 300, 200};
@@ -133,7 +131,7 @@ TEST(CpuIntegrator, CornellBoxUnderEveryKindOfLightInLanesMatchesTheKernelBitFor
             32u * 32u / 4);
 }
 
-// The lanes with alpha: every third of the Cornell box's diffuse triangles blended (alpha 0.5),
+// The lanes with alpha: every second of the Cornell box's diffuse triangles blended (alpha 0.5),
 // shaded lane by lane where a ray meets one and walked through by the shadow rays of every lane,
 // whose pass-through decisions hash the path's bounce; vertex normals tilted, so that some paths
 // end at a BSDF sample below the surface with a shadow ray traced (the bounce it keeps).
@@ -143,16 +141,11 @@ TEST(CpuIntegrator, CornellBoxWithBlendedSurfacesInLanesMatchesTheKernelBitForBi
     const float tilt = 0.4f * float(i % 5) - 0.8f;
     scene.normals.push_back(Vec3{tilt, 1.0f, -tilt});
   }
-  const uint32_t blended = uint32_t(scene.materials.size());
   Material glass_pane;  // diffuse, half transparent
   glass_pane.base_color = {0.7f, 0.6f, 0.5f};
   glass_pane.alpha = 0.5f;
   glass_pane.alpha_mode = AlphaMode::Blend;
-  scene.materials.push_back(glass_pane);
-  uint32_t diffuse = 0;
-  for (uint32_t& id : scene.material_ids) {
-    if (id < blended && scene.materials[id].type == MaterialType::Diffuse && diffuse++ % 3 == 1) id = blended;
-  }
+  share_diffuse_triangles(scene, {glass_pane});
   RenderSettings settings = cornell_settings();
   settings.width = settings.height = 32;
   settings.spp = 16;

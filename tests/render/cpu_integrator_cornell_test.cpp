@@ -35,6 +35,15 @@ void share_diffuse_triangles(Scene& scene, const std::vector<Material>& material
   }
 }
 
+// Vertex normals tilted from +y by an x of -2, -1, 0, 1 or 2 times `step` in turn, and a z of
+// z_per_x times that x.
+void tilt_vertex_normals(Scene& scene, float step, float z_per_x) {
+  for (size_t i = 0; i < scene.positions.size(); ++i) {
+    const float tilt = step * float(i % 5) - 2.0f * step;
+    scene.normals.push_back(Vec3{tilt, 1.0f, z_per_x * tilt});
+  }
+}
+
 TEST(CpuIntegrator, CornellBoxMatchesTheKernelBitForBitOnOneThread) {
   Scene scene = import_scene(cornell_obj(), ImportOptions{});
   EXPECT_GT(expect_host_matches_kernel(scene, cornell_settings(), {"-DKD_FEATURE_EMISSION"}, 1), 24u * 24u / 2);
@@ -89,10 +98,7 @@ TEST(CpuIntegrator, CornellBoxWithNormalsAndSpecularSurfacesInLanesMatchesTheKer
 // ceiling light evaluates them in lanes, and each lane draws its lobe.
 TEST(CpuIntegrator, CornellBoxWithGltfMaterialsInLanesMatchesTheKernelBitForBit) {
   Scene scene = import_scene(cornell_obj(), ImportOptions{});
-  for (size_t i = 0; i < scene.positions.size(); ++i) {
-    const float tilt = 0.25f * float(i % 5) - 0.5f;
-    scene.normals.push_back(Vec3{tilt, 1.0f, 0.5f * tilt});
-  }
+  tilt_vertex_normals(scene, 0.25f, 0.5f);
   Material smooth = metal_rough({0.2f, 0.5f, 0.7f}, 0.0f, 0.08f);
   smooth.ior = 1.33f;
   share_diffuse_triangles(scene, {metal_rough({0.8f, 0.3f, 0.2f}, 0.0f, 1.0f), smooth,
@@ -137,10 +143,7 @@ TEST(CpuIntegrator, CornellBoxUnderEveryKindOfLightInLanesMatchesTheKernelBitFor
 // end at a BSDF sample below the surface with a shadow ray traced (the bounce it keeps).
 TEST(CpuIntegrator, CornellBoxWithBlendedSurfacesInLanesMatchesTheKernelBitForBit) {
   Scene scene = import_scene(cornell_obj(), ImportOptions{});
-  for (size_t i = 0; i < scene.positions.size(); ++i) {
-    const float tilt = 0.4f * float(i % 5) - 0.8f;
-    scene.normals.push_back(Vec3{tilt, 1.0f, -tilt});
-  }
+  tilt_vertex_normals(scene, 0.4f, -1.0f);
   Material glass_pane;  // diffuse, half transparent
   glass_pane.base_color = {0.7f, 0.6f, 0.5f};
   glass_pane.alpha = 0.5f;

@@ -30,9 +30,9 @@ KD_LANE_FN kd_lane pt_ggx_d(kd_lane cos_h, kd_lane alpha2) {
   kd_lane denom = c2 * (alpha2 - 1.0f) + 1.0f;
   return alpha2 / (PT_PI * denom * denom);
 }
-KD_INLINE float pt_ggx_g1(float cos_v, float alpha2) {
-  float c2 = cos_v * cos_v;
-  float tan2 = fmax(0.0f, 1.0f - c2) / fmax(c2, 1e-12f);
+KD_LANE_FN kd_lane pt_ggx_g1(kd_lane cos_v, kd_lane alpha2) {
+  kd_lane c2 = cos_v * cos_v;
+  kd_lane tan2 = fmax(0.0f, 1.0f - c2) / fmax(c2, 1e-12f);
   return 2.0f / (1.0f + sqrt(1.0f + alpha2 * tan2));
 }
 /* Schlick's (1 - cos)^5, the share of 1 - f0 that a Fresnel factor adds to f0. */
@@ -60,21 +60,26 @@ KD_LANE_FN kd_lane pt_ggx_half_vector_d(kd_lane alpha2, kd_lane3 n, kd_lane3 wo,
 }
 /* D * G / (4 cos(wo)) (f * cos(wi) without the Fresnel factor) with the separable Smith G, the pdf
  * of sampling wi by pt_ggx_sample_wi, and wo . h. */
-KD_INLINE float pt_ggx_eval_common(float roughness, float3 n, float3 wo, float3 wi, float* pdf, float* o_h) {
+KD_LANE_FN kd_lane pt_ggx_eval_common(kd_lane roughness, kd_lane3 n, kd_lane3 wo, kd_lane3 wi, kd_lane* pdf,
+                                     kd_lane* o_h) {
   *pdf = 0.0f;
   *o_h = 1.0f;
-  float cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
-  if (cos_o <= 0.0f || cos_i <= 0.0f) return 0.0f;
-  float alpha2 = pt_ggx_alpha2(roughness);
-  float d = pt_ggx_half_vector_d(alpha2, n, wo, wi, pdf, o_h);
-  float g = pt_ggx_g1(cos_o, alpha2) * pt_ggx_g1(cos_i, alpha2);
-  return d * g / (4.0f * cos_o);
+  kd_lane cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
+  KD_LANE_MASK below = (cos_o <= 0.0f) | (cos_i <= 0.0f);
+  if (!kd_any(!below)) return (kd_lane)0.0f;
+  kd_lane alpha2 = pt_ggx_alpha2(roughness);
+  kd_lane d_pdf, d_o_h;
+  kd_lane d = pt_ggx_half_vector_d(alpha2, n, wo, wi, &d_pdf, &d_o_h);
+  kd_lane g = pt_ggx_g1(cos_o, alpha2) * pt_ggx_g1(cos_i, alpha2);
+  *pdf = kd_select(below, *pdf, d_pdf);
+  *o_h = kd_select(below, *o_h, d_o_h);
+  return kd_select(below, (kd_lane)0.0f, d * g / (4.0f * cos_o));
 }
 /* f * cos(wi) and the pdf of sampling wi by pt_ggx_sample_wi. */
-KD_INLINE float3 pt_ggx_eval(float3 color, float roughness, float3 n, float3 wo, float3 wi, float* pdf) {
-  float o_h;
-  float common = pt_ggx_eval_common(roughness, n, wo, wi, pdf, &o_h);
-  return common > 0.0f ? pt_schlick(color, o_h) * common : kd_splat3(0.0f);
+KD_LANE_FN kd_lane3 pt_ggx_eval(kd_lane3 color, kd_lane roughness, kd_lane3 n, kd_lane3 wo, kd_lane3 wi, kd_lane* pdf) {
+  kd_lane o_h;
+  kd_lane common = pt_ggx_eval_common(roughness, n, wo, wi, pdf, &o_h);
+  return kd_select(common > 0.0f, pt_schlick(color, o_h) * common, KD_LANE3(0.0f, 0.0f, 0.0f));
 }
 /* wo reflected about a half vector drawn from D(h) cos(h). */
 KD_LANE_FN kd_lane3 pt_ggx_sample_wi(kd_lane roughness, kd_lane3 n, kd_lane3 wo, kd_lane u1, kd_lane u2) {
@@ -92,10 +97,26 @@ KD_LANE_FN kd_lane3 pt_ggx_sample_wi(kd_lane roughness, kd_lane3 n, kd_lane3 wo,
 
 #ifdef KD_FEATURE_GLASS
 /* Unpolarised Fresnel reflectance for cos_i on the side of index eta_i into eta_t. */
-KD_INLINE float pt_fresnel_dielectric(float cos_i, float cos_t, float eta_i, float eta_t) {
-  float rs = (eta_i * cos_i - eta_t * cos_t) / (eta_i * cos_i + eta_t * cos_t);
-  float rp = (eta_t * cos_i - eta_i * cos_t) / (eta_t * cos_i + eta_i * cos_t);
+KD_LANE_FN kd_lane pt_fresnel_dielectric(kd_lane cos_i, kd_lane cos_t, kd_lane eta_i, kd_lane eta_t) {
+  kd_lane rs = (eta_i * cos_i - eta_t * cos_t) / (eta_i * cos_i + eta_t * cos_t);
+  kd_lane rp = (eta_t * cos_i - eta_i * cos_t) / (eta_t * cos_i + eta_i * cos_t);
   return 0.5f * (rs * rs + rp * rp);
+}
+/* Smooth glass seen from wo (entering: from the front, the outside): the probability of
+ * reflection, with the relative index eta and the cosines of wo and of the refracted direction
+ * for pt_glass_refraction. */
+KD_LANE_FN kd_lane pt_glass_reflectance(kd_lane ior, KD_LANE_MASK entering, kd_lane3 n, kd_lane3 wo, kd_lane* eta,
+                                     kd_lane* cos_i, kd_lane* cos_t) {
+  kd_lane eta_i = kd_select(entering, (kd_lane)1.0f, ior);
+  kd_lane eta_t = kd_select(entering, ior, (kd_lane)1.0f);
+  *eta = eta_i / eta_t;
+  *cos_i = fmin(kd_dot(n, wo), 1.0f);
+  kd_lane sin2_t = *eta * *eta * fmax(0.0f, 1.0f - *cos_i * *cos_i);
+  *cos_t = sqrt(fmax(0.0f, 1.0f - sin2_t));
+  return kd_select(sin2_t >= 1.0f, (kd_lane)1.0f, pt_fresnel_dielectric(*cos_i, *cos_t, eta_i, eta_t));
+}
+KD_LANE_FN kd_lane3 pt_glass_refraction(kd_lane eta, kd_lane cos_i, kd_lane cos_t, kd_lane3 n, kd_lane3 wo) {
+  return kd_normalize(-eta * wo + (eta * cos_i - cos_t) * n);
 }
 #endif
 
@@ -197,20 +218,15 @@ KD_INLINE PtBsdfSample pt_bsdf_sample(const PtMaterial* m, float3 color, float3 
 #endif
 #ifdef KD_FEATURE_GLASS
   if (m->type == PT_DIELECTRIC) {
-    float eta_i = entering ? 1.0f : m->ior;
-    float eta_t = entering ? m->ior : 1.0f;
-    float eta = eta_i / eta_t;
-    float cos_i = fmin(kd_dot(n, wo), 1.0f);
-    float sin2_t = eta * eta * fmax(0.0f, 1.0f - cos_i * cos_i);
-    float cos_t = sqrt(fmax(0.0f, 1.0f - sin2_t));
-    float reflectance = sin2_t >= 1.0f ? 1.0f : pt_fresnel_dielectric(cos_i, cos_t, eta_i, eta_t);
+    float eta, cos_i, cos_t;
+    float reflectance = pt_glass_reflectance(m->ior, entering, n, wo, &eta, &cos_i, &cos_t);
     s.pdf = 0.0f;
     s.is_delta = 1;
     if (u1 < reflectance) {
       s.wi = 2.0f * cos_i * n - wo;
       s.weight = kd_splat3(1.0f);
     } else {
-      s.wi = kd_normalize(-eta * wo + (eta * cos_i - cos_t) * n);
+      s.wi = pt_glass_refraction(eta, cos_i, cos_t, n, wo);
       s.weight = color * (eta * eta); /* radiance is scaled by (eta_i/eta_t)^2 across the boundary */
       s.transmits = 1;
     }

@@ -1,18 +1,18 @@
 // The host's path tracer 8 paths at a time in AVX2 lanes (for any scene whose arrays the gathers
 // reach, apply() below). Each step traces the closest hits of the live paths one after another
-// (kernels/kd_traverse.h) and shades them. Diffuse and emissive hits, untextured and opaque, are
-// shaded all at once with pt_path_shade's parts for them: the hit point and its smooth normal,
-// emission with MIS, Russian roulette, next-event estimation (on the triangle lights in lanes;
-// with the environment, punctual lights or textured emission, pt_next_event_any lane by lane) and
-// the Lambertian BSDF sample. Every other hit (mirror, rough conductor, glass, the glTF material,
-// textures, alpha) and a ray that leaves the scene towards an environment are shaded by
-// pt_path_shade lane by lane, and their paths stay in their lanes. Then the shadow rays are
-// traced; a path that ends is added to the film and its lane takes the next sample. The shading
-// in lanes calls the device code's lane functions (kernels/kd_lane.h) with 8-float lanes
-// (lane8.h), so each lane computes what pt_path_shade computes for its path, bit for bit, and the
-// film is the scalar path tracer's and the kernel's (tests/render/cpu_integrator.h compares them).
-// Sample values, the light pick's search and a path's start and film sums stay scalar, lane by
-// lane.
+// (kernels/kd_traverse.h) and shades them all at once with pt_path_shade's parts: the hit point
+// and its smooth normal, emission with MIS, Russian roulette, next-event estimation (the light
+// kind picked in lanes; the triangle lights in lanes; the environment's and punctual lights'
+// samples lane by lane, their shadow rays in lanes) and the BSDF sample, for every material but
+// alpha-tested ones and textured emitters (Lambertian, glTF metallic-roughness, rough conductor,
+// mirror, glass; textures looked up lane by lane). Those, and a ray that leaves the scene towards
+// an environment, are shaded by pt_path_shade lane by lane, and their paths stay in their lanes.
+// Then the shadow rays are traced; a path that ends is added to the film and its lane takes the
+// next sample. The shading in lanes calls the device code's lane functions (kernels/kd_lane.h)
+// with 8-float lanes (lane8.h), so each lane computes what pt_path_shade computes for its path,
+// bit for bit, and the film is the scalar path tracer's and the kernel's
+// (tests/render/cpu_integrator.h compares them). Sample values, the light pick's search and a
+// path's start and film sums stay scalar, lane by lane.
 //
 // Compiled into the x86-64-v3 build of render_host_pixels.cpp, inside its namespace after the
 // device code, whose functions it calls.
@@ -127,9 +127,11 @@ inline void shaded_lane_by_lane(Paths& ps, int lanes) {
 // The BSDF of a surface the lanes shade: Lambertian of colour `color`, or where `metal_rough` is
 // set the glTF material of that base colour and the other three.
 struct LaneBsdf {
-  Mask8 metal_rough;
+  Mask8 metal_rough, conductor, mirror, glass;  // the lanes of each kind; Lambertian where none
+  Mask8 entering;                               // wo on the front side (glass: from outside)
   Float8x3 color;
   Float8 roughness = 0.0f, ior = 0.0f, metallic = 0.0f;
+  Mask8 delta() const { return mirror | glass; }
 };
 
 // pt_apply_textures for the lanes set in `lanes`, one after another: each lane's material and
@@ -158,35 +160,68 @@ inline void apply_textures_lane_by_lane(int lanes, const PtSceneData* scene, Int
   bsdf->metallic = load(metallic);
 }
 
-// pt_bsdf_eval for the lanes' BSDFs: f * cos(wi), and the pdf of sampling wi.
+// pt_bsdf_eval for the lanes' BSDFs: f * cos(wi), and the pdf of sampling wi (the delta lobes'
+// lanes take no part: next-event estimation skips them).
 inline Float8x3 bsdf_eval(const LaneBsdf& m, Float8x3 n, Float8x3 wo, Float8x3 wi, Float8* pdf) {
   const Float8 cos_i = kd_dot(n, wi);
   *pdf = kd_select(cos_i <= 0.0f, Float8(0.0f), cos_i * PT_INV_PI);
   Float8x3 f_cos = kd_select(cos_i <= 0.0f, Float8x3{}, m.color * (cos_i * PT_INV_PI));
   if (kd_any(m.metal_rough)) {
-    Float8 metal_rough_pdf;
-    const Float8x3 metal_rough = pt_metal_rough_eval(m.roughness, m.ior, m.metallic, m.color, n, wo, wi, &metal_rough_pdf);
-    *pdf = kd_select(m.metal_rough, metal_rough_pdf, *pdf);
-    f_cos = kd_select(m.metal_rough, metal_rough, f_cos);
+    Float8 lobe_pdf;
+    const Float8x3 lobe = pt_metal_rough_eval(m.roughness, m.ior, m.metallic, m.color, n, wo, wi, &lobe_pdf);
+    *pdf = kd_select(m.metal_rough, lobe_pdf, *pdf);
+    f_cos = kd_select(m.metal_rough, lobe, f_cos);
+  }
+  if (kd_any(m.conductor)) {
+    Float8 lobe_pdf;
+    const Float8x3 lobe = pt_ggx_eval(m.color, m.roughness, n, wo, wi, &lobe_pdf);
+    *pdf = kd_select(m.conductor, lobe_pdf, *pdf);
+    f_cos = kd_select(m.conductor, lobe, f_cos);
   }
   return f_cos;
 }
 
-// pt_bsdf_sample for the lanes' BSDFs (neither has a delta lobe or transmits): the direction,
-// with its pdf and weight.
+// pt_bsdf_sample for the lanes' BSDFs: the direction, with its pdf and weight, and the lanes whose
+// direction passes through the surface.
 inline Float8x3 bsdf_sample(const LaneBsdf& m, Float8x3 n, Float8x3 wo, Float8 u1, Float8 u2, Float8 u_lobe, Float8* pdf,
-                            Float8x3* weight) {
+                            Float8x3* weight, Mask8* transmits) {
   Float8x3 wi = pt_sample_cosine(n, u1, u2);
   *pdf = fmax(kd_dot(n, wi), 0.0f) * PT_INV_PI;
   *weight = kd_select(*pdf > 0.0f, m.color, Float8x3{});
+  *transmits = Mask8{};
   if (kd_any(m.metal_rough)) {
     const Mask8 ggx = m.metal_rough & (u_lobe < pt_gltf_ggx_probability(m.metallic, m.ior, m.color, kd_dot(n, wo)));
     if (kd_any(ggx)) wi = kd_select(ggx, pt_ggx_sample_wi(m.roughness, n, wo, u1, u2), wi);
-    Float8 metal_rough_pdf;
-    const Float8x3 f_cos = pt_metal_rough_eval(m.roughness, m.ior, m.metallic, m.color, n, wo, wi, &metal_rough_pdf);
-    *pdf = kd_select(m.metal_rough, metal_rough_pdf, *pdf);
-    *weight = kd_select(m.metal_rough, kd_select(metal_rough_pdf > 0.0f, f_cos / metal_rough_pdf, Float8x3{}), *weight);
+    Float8 lobe_pdf;
+    const Float8x3 f_cos = pt_metal_rough_eval(m.roughness, m.ior, m.metallic, m.color, n, wo, wi, &lobe_pdf);
+    *pdf = kd_select(m.metal_rough, lobe_pdf, *pdf);
+    *weight = kd_select(m.metal_rough, kd_select(lobe_pdf > 0.0f, f_cos / lobe_pdf, Float8x3{}), *weight);
   }
+  if (kd_any(m.conductor)) {
+    wi = kd_select(m.conductor, pt_ggx_sample_wi(m.roughness, n, wo, u1, u2), wi);
+    Float8 lobe_pdf;
+    const Float8x3 f_cos = pt_ggx_eval(m.color, m.roughness, n, wo, wi, &lobe_pdf);
+    *pdf = kd_select(m.conductor, lobe_pdf, *pdf);
+    *weight = kd_select(m.conductor, kd_select(lobe_pdf > 0.0f, f_cos / lobe_pdf, Float8x3{}), *weight);
+  }
+  if (kd_any(m.mirror)) {
+    wi = kd_select(m.mirror, 2.0f * kd_dot(wo, n) * n - wo, wi);
+    *weight = kd_select(m.mirror, m.color, *weight);
+  }
+  if (kd_any(m.glass)) {
+    Float8 eta, cos_i, cos_t;
+    const Float8 reflectance = pt_glass_reflectance(m.ior, m.entering, n, wo, &eta, &cos_i, &cos_t);
+    const Mask8 reflects = m.glass & (u1 < reflectance);
+    *transmits = m.glass & !reflects;
+    wi = kd_select(reflects, 2.0f * cos_i * n - wo, wi);
+    *weight = kd_select(reflects, Float8x3{1.0f, 1.0f, 1.0f}, *weight);
+    if (kd_any(*transmits)) {
+      wi = kd_select(*transmits, pt_glass_refraction(eta, cos_i, cos_t, n, wo), wi);
+      // radiance is scaled by (eta_i/eta_t)^2 across the boundary
+      *weight = kd_select(*transmits, m.color * (eta * eta), *weight);
+    }
+  }
+  *pdf = kd_select(m.delta(), Float8(0.0f), *pdf);
   return wi;
 }
 
@@ -307,9 +342,9 @@ inline void next_event_lane_by_lane(Paths& ps, int lanes, const PtSceneData* sce
   }
 }
 
-// pt_path_shade for the live lanes, each with its hit: in lanes for diffuse and emissive surfaces,
-// lane by lane for the others. The lanes still alive after it, and those with a shadow ray to
-// trace, are left in ps.alive and ps.shadow.
+// pt_path_shade for the live lanes, each with its hit: in lanes, but lane by lane for alpha-tested
+// surfaces, textured emitters and rays that leave the scene towards an environment. The lanes
+// still alive after it, and those with a shadow ray to trace, are left in ps.alive and ps.shadow.
 inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* params, const HitRecord* hits) {
   ps.shadow = 0;
   const Int8 hit_record = Int8(IntVector{0, 1, 2, 3, 4, 5, 6, 7});
@@ -325,7 +360,9 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   const float* material_floats = reinterpret_cast<const float*>(scene->materials);
   const int32_t* material_words = reinterpret_cast<const int32_t*>(scene->materials);
   const Int8 type = gather(material_words + 3, material * 16, active);
-  Mask8 in_lanes = (type == (int32_t)PT_DIFFUSE) | (type == (int32_t)PT_EMISSIVE) | (type == (int32_t)PT_METALLIC_ROUGHNESS);
+  Mask8 in_lanes = (type == (int32_t)PT_DIFFUSE) | (type == (int32_t)PT_EMISSIVE) |
+                   (type == (int32_t)PT_METALLIC_ROUGHNESS) | (type == (int32_t)PT_ROUGH_CONDUCTOR) |
+                   (type == (int32_t)PT_MIRROR) | (type == (int32_t)PT_DIELECTRIC);
   // opaque (pt_alpha_passes lets no ray through), and no emission texture (pt_textured_emission)
   if (PT_USES(params, PT_FEATURE_ALPHA)) {
     in_lanes = in_lanes &
@@ -366,11 +403,18 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   LaneBsdf bsdf;
   bsdf.color = gather3(material_floats, material, 16, 0, active);
   bsdf.metal_rough = active & (type == (int32_t)PT_METALLIC_ROUGHNESS);
-  if (kd_any(bsdf.metal_rough)) {
+  bsdf.conductor = active & (type == (int32_t)PT_ROUGH_CONDUCTOR);
+  bsdf.mirror = active & (type == (int32_t)PT_MIRROR);
+  bsdf.glass = active & (type == (int32_t)PT_DIELECTRIC);
+  bsdf.entering = front;
+  {
     const Int8 words = material * 16;
-    bsdf.roughness = gather(material_floats + PATH_LANES_MATERIAL_WORD(roughness), words, bsdf.metal_rough);
-    bsdf.ior = gather(material_floats + PATH_LANES_MATERIAL_WORD(ior), words, bsdf.metal_rough);
-    bsdf.metallic = gather(material_floats + PATH_LANES_MATERIAL_WORD(metallic), words, bsdf.metal_rough);
+    const Mask8 rough = bsdf.metal_rough | bsdf.conductor, refracting = bsdf.metal_rough | bsdf.glass;
+    if (kd_any(rough)) bsdf.roughness = gather(material_floats + PATH_LANES_MATERIAL_WORD(roughness), words, rough);
+    if (kd_any(refracting)) bsdf.ior = gather(material_floats + PATH_LANES_MATERIAL_WORD(ior), words, refracting);
+    if (kd_any(bsdf.metal_rough)) {
+      bsdf.metallic = gather(material_floats + PATH_LANES_MATERIAL_WORD(metallic), words, bsdf.metal_rough);
+    }
   }
   if (PT_USES(params, PT_FEATURE_TEXTURES)) {
     const Int8 words = material * 16;
@@ -425,17 +469,19 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
     active = active & !(roulette_lanes & (value(PT_DIM_ROULETTE) >= survive));
     beta = kd_select(roulette_lanes, beta / survive, beta);
   }
-  // next-event estimation (pt_next_event_any): in lanes, but for textured emitters
+  // next-event estimation (pt_next_event_any) where the BSDF has no delta lobe: in lanes, but for
+  // textured emitters
+  const Mask8 lit = active & !bsdf.delta();
   if (PT_USES(params, PT_FEATURE_EMISSIVE_TEXTURE)) {
-    next_event_lane_by_lane(ps, bits(active), scene, params, material, bounce, p, n, ng_facing, wo, bsdf, beta);
+    next_event_lane_by_lane(ps, bits(lit), scene, params, material, bounce, p, n, ng_facing, wo, bsdf, beta);
   } else {
     const Float8 u = params->select_triangles < 1.0f ? value(PT_DIM_LIGHT_TYPE) : Float8(0.0f);
-    const Mask8 triangles = active & (u < params->select_triangles);
+    const Mask8 triangles = lit & (u < params->select_triangles);
     if (kd_any(triangles)) {
       next_event_on_triangles(ps, scene, params, triangles, value(PT_DIM_LIGHT_PICK), value(PT_DIM_LIGHT_V), p, n,
                               ng_facing, wo, bsdf, beta);
     }
-    const Mask8 others = active & !triangles;
+    const Mask8 others = lit & !triangles;
     if (kd_any(others)) {
       next_event_on_other_lights(ps, scene, params, others, u - params->select_triangles, value(PT_DIM_ENV_U),
                                  value(PT_DIM_ENV_V), p, n, ng_facing, wo, bsdf, beta);
@@ -445,13 +491,15 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   Float8 pdf;
   Float8x3 weight;
   const Float8 u_lobe = kd_any(bsdf.metal_rough & active) ? value(PT_DIM_LOBE) : Float8(0.0f);
-  const Float8x3 wi = bsdf_sample(bsdf, n, wo, bsdf_u, bsdf_v, u_lobe, &pdf, &weight);
+  Mask8 transmits;
+  const Float8x3 wi = bsdf_sample(bsdf, n, wo, bsdf_u, bsdf_v, u_lobe, &pdf, &weight, &transmits);
   const Float8 side = kd_dot(wi, ng_facing);
-  active = active & !((pt_max3(weight) <= 0.0f) | (side <= 0.0f));
+  // a sample that leaves on the wrong side of the surface ends the path
+  active = active & !((pt_max3(weight) <= 0.0f) | (transmits & (side >= 0.0f)) | ((!transmits) & (side <= 0.0f)));
   store3(ps.tx, ps.ty, ps.tz, kd_select(active, beta * weight, beta));
   store3(ps.rx, ps.ry, ps.rz, radiance);
   store(ps.bsdf_pdf, pdf);
-  store3(ps.ox, ps.oy, ps.oz, pt_offset_origin(p, ng_facing));
+  store3(ps.ox, ps.oy, ps.oz, pt_offset_origin(p, kd_select(transmits, -ng_facing, ng_facing)));
   store3(ps.dx, ps.dy, ps.dz, wi);
   store(ps.bounce, kd_select(active, bounce + 1, bounce));  // an ended path's, as pt_path_shade leaves it
   ps.alive = bits(active);

@@ -4,7 +4,10 @@
 // branch points), with the lanes of a group taking different sides of each select. The host's
 // paths in lanes rely on it for a film equal to the kernel's. Compiled for x86-64-v3 without
 // contraction into FMA, as the host's lanes are.
-#define KD_FEATURE_METALLIC_ROUGHNESS  // the glTF material's functions (kernels/pt_bsdf.h)
+// the rough conductor's, glass's and the glTF material's functions (kernels/pt_bsdf.h)
+#define KD_FEATURE_GLOSSY
+#define KD_FEATURE_GLASS
+#define KD_FEATURE_METALLIC_ROUGHNESS
 #include <kernels/pt_bsdf.h>
 #include <kernels/pt_sampling.h>
 #include <kernels/pt_spherical_triangle.h>
@@ -242,6 +245,48 @@ TEST(LaneFunctions, GltfMaterialEvaluationAndSamples) {
   // both sides of the evaluation's early exit were taken
   EXPECT_GT(evaluated_lanes, kGroups);
   EXPECT_LT(evaluated_lanes, kGroups * kLanes);
+}
+
+// The rough conductor and glass: directions on both sides of the normal, roughness from a mirror's
+// to 1 (and the hard values), glass from either side at indices from 1 up (total internal
+// reflection included).
+TEST(LaneFunctions, ConductorAndGlass) {
+  if (!has_avx2()) GTEST_SKIP() << "the lanes need AVX2";
+  Arguments arguments(6);
+  Mismatches mismatches;
+  int total_reflection_lanes = 0;
+  for (int g = 0; g < kGroups; ++g) {
+    float3 color[kLanes], n[kLanes], wo[kLanes], wi[kLanes], f_cos[kLanes], refracted[kLanes];
+    float roughness[kLanes], ior[kLanes], pdf[kLanes], reflectance[kLanes], eta[kLanes], cos_i[kLanes], cos_t[kLanes];
+    bool entering[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      color[l] = KD_FLOAT3(arguments.unit(), arguments.unit(), arguments.unit());
+      n[l] = arguments.unit3();
+      wo[l] = arguments.unit3();
+      if (kd_dot(n[l], wo[l]) < 0.0f) n[l] = -n[l];  // n is on wo's side
+      wi[l] = arguments.unit3();
+      roughness[l] = l < 5 ? arguments.unit() : l == 5 ? 0.0f : arguments.next(1.0f);
+      ior[l] = 1.0f + 1.5f * arguments.unit();
+      entering[l] = l % 2 == 0;
+      f_cos[l] = pt_ggx_eval(color[l], roughness[l], n[l], wo[l], wi[l], &pdf[l]);
+      reflectance[l] = pt_glass_reflectance(ior[l], entering[l], n[l], wo[l], &eta[l], &cos_i[l], &cos_t[l]);
+      total_reflection_lanes += reflectance[l] == 1.0f;
+      refracted[l] = pt_glass_refraction(eta[l], cos_i[l], cos_t[l], n[l], wo[l]);
+    }
+    Float8 lane_pdf, lane_eta, lane_cos_i, lane_cos_t;
+    mismatches.compare(pt_ggx_eval(lanes3(color), lanes(roughness), lanes3(n), lanes3(wo), lanes3(wi), &lane_pdf), f_cos);
+    mismatches.compare(lane_pdf, pdf);
+    const lane8::Mask8 lane_entering = lane8::lanes_of(0x55);  // the even lanes, as above
+    mismatches.compare(pt_glass_reflectance(lanes(ior), lane_entering, lanes3(n), lanes3(wo), &lane_eta, &lane_cos_i,
+                                            &lane_cos_t),
+                       reflectance);
+    mismatches.compare(lane_eta, eta);
+    mismatches.compare(lane_cos_i, cos_i);
+    mismatches.compare(lane_cos_t, cos_t);
+    mismatches.compare(pt_glass_refraction(lane_eta, lane_cos_i, lane_cos_t, lanes3(n), lanes3(wo)), refracted);
+  }
+  EXPECT_EQ(mismatches.count, 0);
+  EXPECT_GT(total_reflection_lanes, 0);  // past the critical angle, from inside
 }
 
 }  // namespace

@@ -22,8 +22,8 @@ typedef struct PtBsdfSample {
 #define PT_GGX_CODE
 #endif
 
-/* The GGX functions the glTF material uses are lane functions (kernels/kd_lane.h): the host's
- * paths in lanes shade that material 8 paths at a time with them. */
+/* The BSDFs' functions are lane functions (kernels/kd_lane.h): the host's paths in lanes shade 8
+ * paths at a time with them. */
 #ifdef PT_GGX_CODE
 KD_LANE_FN kd_lane pt_ggx_d(kd_lane cos_h, kd_lane alpha2) {
   kd_lane c2 = cos_h * cos_h;

@@ -76,9 +76,6 @@ class HostRender : public RenderWorker {
   std::atomic<uint64_t> rays_{0}, nonfinite_{0};
 };
 
-}  // namespace
-
-namespace {
 bool cpu_has_x86_64_v3() {
 #ifdef KDRAY_HOST_PIXELS_HAVE_X86_64_V3
   // The level's features that GCC and clang both name (clang 14 and 15 know no "x86-64-v3"); the
@@ -89,6 +86,7 @@ bool cpu_has_x86_64_v3() {
   return false;
 #endif
 }
+
 }  // namespace
 
 std::string device_for_render() {

@@ -107,10 +107,20 @@ TEST_F(KdrenderCli, AovsNeedAnExrOutputOfEitherCase) {
   EXPECT_TRUE(fs::exists(path("aov.EXR")));
 }
 
+// The default marked: the host where no device named renders there, else the OpenCL device.
 TEST_F(KdrenderCli, ListsDevices) {
   test::ToolRun run = kdrender("--device list");
   EXPECT_EQ(run.exit_code, 0) << run.out;
-  EXPECT_NE(run.out.find("[default]"), std::string::npos) << run.out;
+  const bool host = device_for_render() == kHostDevice;
+  EXPECT_EQ(run.out.find("host: kdray's C++ build on this CPU  [default]") != std::string::npos, host) << run.out;
+  EXPECT_EQ(run.out.find(")  [default]") != std::string::npos, !host) << run.out;
+  test::ToolRun json = kdrender("--device list --json");
+  ASSERT_EQ(json.exit_code, 0) << json.out;
+  const nlohmann::json report = nlohmann::json::parse(json.out);
+  EXPECT_GE(report["devices"].size(), 1u);
+  if (host) {
+    EXPECT_EQ(report["default"], "host");
+  }
   EXPECT_EQ(kdrender(cornell(path("nodevice.png"), "--device 99")).exit_code, 1);
 }
 
@@ -173,7 +183,9 @@ TEST_F(KdrenderCli, WithNoDeviceNamedRendersOnTheFasterPath) {
   ASSERT_EQ(run.exit_code, 0) << run.out;
   const nlohmann::json report = nlohmann::json::parse(run.out);
   EXPECT_EQ(report["device"] == "host", host) << report["device"];
-  if (host && __builtin_cpu_supports("avx2")) EXPECT_EQ(report["build_source"], "built in, x86-64-v3, paths in lanes");
+  if (host && __builtin_cpu_supports("avx2")) {
+    EXPECT_EQ(report["build_source"], "built in, x86-64-v3, paths in lanes");
+  }
   ASSERT_EQ(kdrender(cornell(path("pocl.exr"), "--spp 2 --seed 3 --device cpu -q")).exit_code, 0);
   EXPECT_EQ(read_film_exr(path("default.exr")).sums, read_film_exr(path("pocl.exr")).sums);
 

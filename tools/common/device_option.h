@@ -13,6 +13,7 @@
 #pragma once
 
 #include <kdray/opencl_device.h>
+#include <kdray/render.h>
 
 #include "tool_main.h"
 
@@ -62,21 +63,25 @@ inline void check_threads_option(const std::string& device, unsigned threads) {
   }
 }
 
-// `--device list`: every OpenCL device, the one `auto` picks marked.
-inline int list_opencl_devices(bool json) {
+// `--device list`: every OpenCL device, the one `auto` picks marked; `auto_device` is what auto
+// names in the tool (kdrender: kdray::device_for_render, the host where it is the faster CPU path,
+// then listed after the OpenCL devices and marked instead).
+inline int list_opencl_devices(bool json, const std::string& auto_device = "auto") {
   const std::vector<DeviceInfo> devices = list_devices();
-  const DeviceInfo chosen = select_device({});
+  const bool host = auto_device == kHostDevice;
+  const int chosen = host ? -1 : select_device({}).index;
   nlohmann::json list = nlohmann::json::array();
   for (const DeviceInfo& d : devices) {
     list.push_back({{"index", d.index}, {"platform", d.platform}, {"name", d.name}, {"driver", d.driver_version},
-                    {"gpu", d.is_gpu}, {"compute_units", d.compute_units}, {"default", d.index == chosen.index}});
+                    {"gpu", d.is_gpu}, {"compute_units", d.compute_units}, {"default", d.index == chosen}});
     if (!json) {
       std::printf("%d: %s / %s (%s, %u compute units, driver %s)%s\n", d.index, d.platform.c_str(), d.name.c_str(),
                   d.is_gpu ? "GPU" : "CPU", d.compute_units, d.driver_version.c_str(),
-                  d.index == chosen.index ? "  [default]" : "");
+                  d.index == chosen ? "  [default]" : "");
     }
   }
-  if (json) print_json({{"devices", list}});
+  if (!json && host) std::printf("host: kdray's C++ build on this CPU  [default]\n");
+  if (json) print_json({{"devices", list}, {"default", host ? nlohmann::json(kHostDevice) : nlohmann::json(chosen)}});
   return kExitOk;
 }
 

@@ -161,7 +161,7 @@ int main(int argc, char** argv) {
 
   return kdray::tool::run(app, argc, argv, [&]() -> int {
     if (kdray::tool::device_kind(o.frame.device.device) == kdray::tool::DeviceKind::List) {
-      return kdray::tool::list_opencl_devices(o.flags.json);
+      return kdray::tool::list_opencl_devices(o.flags.json, kdray::device_for_render());
     }
     if (!o.merge_inputs.empty()) {
       if (!o.scene_path.empty() || !o.jobs_path.empty()) throw UsageError("--merge takes EXR files, not a scene and tree");

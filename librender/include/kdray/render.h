@@ -32,8 +32,8 @@ constexpr const char* kHostDevice = "host";
 
 // The device a render that names no device runs on: "auto" (OpenCL's choice, the GPU) where an
 // OpenCL GPU is present; else kHostDevice where this CPU runs the host's x86-64-v3 build, which
-// renders 8 paths at a time in AVX2 lanes and is the faster of the CPU's two paths (BENCHMARKS.md,
-// "Paths in lanes"), or where no OpenCL platform is installed at all; else "auto" (PoCL). The
+// renders 8 paths at a time in AVX2 lanes and rendered every scene measured at least as fast as
+// PoCL (BENCHMARKS.md), or where no OpenCL platform is installed at all; else "auto" (PoCL). The
 // OpenCL devices are listed once per process.
 std::string device_for_render();
 

@@ -176,7 +176,8 @@ KD_INLINE void pt_next_event_any(PtPath* path, const PtSceneData* scene, KD_GLOB
   float2 u_env = KD_FLOAT2(0.0f, 0.0f);
 #endif
   PtLightSample ls;
-  if (pt_sample_other_light(&ls, scene, params, p, u, u_env)) pt_shadow_towards(path, params, m, color, p, n, ng, wo, ls);
+  if (pt_sample_other_light(&ls, scene, params, p, u, u_env))
+    pt_shadow_towards(path, params, m, color, p, n, ng, wo, ls);
 }
 #endif
 

@@ -124,8 +124,8 @@ inline void shaded_lane_by_lane(Paths& ps, int lanes) {
   }
 }
 
-// The BSDF of a surface the lanes shade: Lambertian of colour `color`, or where `metal_rough` is
-// set the glTF material of that base colour and the other three.
+// The BSDFs of the surfaces the lanes shade: the lanes of each kind (Lambertian where no kind's
+// mask is set), their colour and what the kinds read of their materials.
 struct LaneBsdf {
   Mask8 metal_rough, conductor, mirror, glass;  // the lanes of each kind; Lambertian where none
   Mask8 entering;                               // wo on the front side (glass: from outside)
@@ -183,8 +183,8 @@ inline Float8x3 bsdf_eval(const LaneBsdf& m, Float8x3 n, Float8x3 wo, Float8x3 w
 
 // pt_bsdf_sample for the lanes' BSDFs: the direction, with its pdf and weight, and the lanes whose
 // direction passes through the surface.
-inline Float8x3 bsdf_sample(const LaneBsdf& m, Float8x3 n, Float8x3 wo, Float8 u1, Float8 u2, Float8 u_lobe, Float8* pdf,
-                            Float8x3* weight, Mask8* transmits) {
+inline Float8x3 bsdf_sample(const LaneBsdf& m, Float8x3 n, Float8x3 wo, Float8 u1, Float8 u2, Float8 u_lobe,
+                            Float8* pdf, Float8x3* weight, Mask8* transmits) {
   Float8x3 wi = pt_sample_cosine(n, u1, u2);
   *pdf = fmax(kd_dot(n, wi), 0.0f) * PT_INV_PI;
   *weight = kd_select(*pdf > 0.0f, m.color, Float8x3{});
@@ -299,8 +299,8 @@ inline void next_event_on_other_lights(Paths& ps, const PtSceneData* scene, cons
   const int sampling = bits(others);
   for (int l = 0; l < kLanes; ++l) {
     PtLightSample ls;
-    if (!(sampling >> l & 1) || !pt_sample_other_light(&ls, scene, params, lane(p, l), u[l], KD_FLOAT2(u_env0[l], u_env1[l])))
-      continue;
+    if (!(sampling >> l & 1)) continue;
+    if (!pt_sample_other_light(&ls, scene, params, lane(p, l), u[l], KD_FLOAT2(u_env0[l], u_env1[l]))) continue;
     drawn |= 1 << l;
     wx[l] = ls.wi.x, wy[l] = ls.wi.y, wz[l] = ls.wi.z, distance[l] = ls.distance;
     vx[l] = ls.value.x, vy[l] = ls.value.y, vz[l] = ls.value.z, light_pdf[l] = ls.pdf;
@@ -360,10 +360,9 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   const float* material_floats = reinterpret_cast<const float*>(scene->materials);
   const int32_t* material_words = reinterpret_cast<const int32_t*>(scene->materials);
   const Int8 type = gather(material_words + 3, material * 16, active);
-  Mask8 in_lanes = (type == (int32_t)PT_DIFFUSE) | (type == (int32_t)PT_EMISSIVE) |
-                   (type == (int32_t)PT_METALLIC_ROUGHNESS) | (type == (int32_t)PT_ROUGH_CONDUCTOR) |
-                   (type == (int32_t)PT_MIRROR) | (type == (int32_t)PT_DIELECTRIC);
-  // opaque (pt_alpha_passes lets no ray through), and no emission texture (pt_textured_emission)
+  // every kind of material (an unknown type is Lambertian in lanes as in pt_bsdf_sample), if it is
+  // opaque (pt_alpha_passes lets no ray through) and has no emission texture (pt_textured_emission)
+  Mask8 in_lanes = active;
   if (PT_USES(params, PT_FEATURE_ALPHA)) {
     in_lanes = in_lanes &
                (gather(material_floats + PATH_LANES_MATERIAL_WORD(alpha_cutoff), material * 16, active) == 0.0f);
@@ -423,7 +422,9 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
                            PATH_LANES_MATERIAL_WORD(normal_texture)})
       textured = textured | (gather(material_words + texture, words, active) >= 0);
     textured = textured & active;
-    if (kd_any(textured)) apply_textures_lane_by_lane(bits(textured), scene, material, tri, u, v, ng, ng_facing, &bsdf, &n);
+    if (kd_any(textured)) {
+      apply_textures_lane_by_lane(bits(textured), scene, material, tri, u, v, ng, ng_facing, &bsdf, &n);
+    }
   }
   const Int8 bounce = load(ps.bounce);
   const int first_hits = bits(active & (bounce == 0));

@@ -17,8 +17,13 @@
 #               shared by light and shading
 #   pixels      pt_path_state.h, pt_film.h, render_host_pixels.cpp: each path's start and camera ray,
 #               the film's accumulation, the pixel loop
+#   lanes       path_lanes.h, lane8.h, kd_lane.h and the AVX intrinsics' headers: the paths in lanes
+#               (their step loop, gathers, masks, copies) and, since the line tables put each
+#               inlined 8-float operation at lane8.h's operator, most of their light, shading and
+#               math
 #   start       the dynamic loader (the image module's OpenImageIO libraries load during the render)
 #   rest        everything else: loading, the kernel, libraries
+# KDRAY_HOST_LANES=off in the environment profiles one path at a time instead of the lanes.
 # Scenes: the Cornell box sample, the Cornell box with the bunny (bench/cornell_bunny.py), and any
 # asset kdconvert reads, given as arguments (framed by its own camera, or kdrender's default).
 #   [SPP=32] bench/sample_parts.sh [BUILD_DIR] [ASSET...]
@@ -50,6 +55,7 @@ parts = [("traversal", r"^kd_(geometry|traverse\w*|scene_view|types)\.h$"),
          ("shading", r"^pt_(path|bsdf|material|sampling|texture\w*)\.h$"),
          ("math", r"^(kd_vector\.h|kd_math\.h|cmath|s_\w+\.S|e_\w+\.c|s_\w+\.c)$"),
          ("pixels", r"^(pt_path_state\.h|pt_film\.h|render_host_pixels\.cpp)$"),
+         ("lanes", r"^(path_lanes\.h|lane8\.h|kd_lane\.h|avx\w*intrin\.h)$"),
          ("start", r"^(dl-\S+|do-rel\.h|strcmp\S*)$")]
 totals = {name: 0.0 for name, _ in parts}
 totals["rest"] = 0.0
@@ -81,8 +87,8 @@ profile() {
 
 machine_line
 echo "kdrender --device host --threads 2, 256x256, 8 bounces, $SPP spp; % of perf's samples (cpu-clock, 2000 Hz)"
-printf "%-16s %7s %9s %9s %9s %9s %9s %9s %9s %9s\n" scene "wall s" traversal samples light shading math pixels \
-  start rest
+printf "%-16s %7s %9s %9s %9s %9s %9s %9s %9s %9s %9s\n" scene "wall s" traversal samples light shading math pixels \
+  lanes start rest
 scene_files "$ROOT/samples/cornell-box.obj" cornell
 profile cornell-box "$WORK/cornell.kdscene" "$WORK/cornell.kdtree" $CORNELL_VIEW
 "$ROOT/bench/cornell_bunny.py" "$WORK" > /dev/null

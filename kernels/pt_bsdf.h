@@ -47,17 +47,18 @@ KD_LANE_FN kd_lane pt_ggx_alpha2(kd_lane roughness) {
   kd_lane alpha = fmax(roughness, 1e-3f);
   return alpha * alpha;
 }
-/* D(h) for the half vector h of wo and wi (both on the side of n), with wo . h and the pdf of
- * drawing wi by pt_ggx_sample_wi: its visible normal's density G1(wo) (wo . h) D(h) / cos(wo),
- * over the reflection's 4 (wo . h). */
-KD_LANE_FN kd_lane pt_ggx_half_vector_d(kd_lane alpha2, kd_lane3 n, kd_lane3 wo, kd_lane3 wi, kd_lane* pdf,
-                                       kd_lane* o_h) {
+/* D(h) for the half vector h of wo and wi, with wo . h and the pdf of drawing wi by
+ * pt_ggx_sample_wi: its visible normal's density G1(wo) (wo . h) D(h) / cos(wo), over the
+ * reflection's 4 (wo . h). Where `below` (wo or wi not on the side of n), *pdf and *o_h are left
+ * as they are. */
+KD_LANE_FN kd_lane pt_ggx_half_vector_d(kd_lane alpha2, kd_lane3 n, kd_lane3 wo, kd_lane3 wi, KD_LANE_MASK below,
+                                       kd_lane* pdf, kd_lane* o_h) {
   kd_lane3 h = kd_normalize(wo + wi);
   kd_lane cos_h = kd_dot(n, h);
   kd_lane cos_o = kd_dot(n, wo);
-  *o_h = kd_dot(wo, h);
+  *o_h = kd_select(below, *o_h, kd_dot(wo, h));
   kd_lane d = pt_ggx_d(cos_h, alpha2);
-  *pdf = d * pt_ggx_g1(cos_o, alpha2) / (4.0f * cos_o);
+  *pdf = kd_select(below, *pdf, d * pt_ggx_g1(cos_o, alpha2) / (4.0f * cos_o));
   return d;
 }
 /* D * G / (4 cos(wo)) (f * cos(wi) without the Fresnel factor) with the separable Smith G, the pdf
@@ -70,11 +71,8 @@ KD_LANE_FN kd_lane pt_ggx_eval_common(kd_lane roughness, kd_lane3 n, kd_lane3 wo
   KD_LANE_MASK below = (cos_o <= 0.0f) | (cos_i <= 0.0f);
   if (!kd_any(!below)) return (kd_lane)0.0f;
   kd_lane alpha2 = pt_ggx_alpha2(roughness);
-  kd_lane d_pdf, d_o_h;
-  kd_lane d = pt_ggx_half_vector_d(alpha2, n, wo, wi, &d_pdf, &d_o_h);
+  kd_lane d = pt_ggx_half_vector_d(alpha2, n, wo, wi, below, pdf, o_h);
   kd_lane g = pt_ggx_g1(cos_o, alpha2) * pt_ggx_g1(cos_i, alpha2);
-  *pdf = kd_select(below, *pdf, d_pdf);
-  *o_h = kd_select(below, *o_h, d_o_h);
   return kd_select(below, (kd_lane)0.0f, d * g / (4.0f * cos_o));
 }
 /* f * cos(wi) and the pdf of sampling wi by pt_ggx_sample_wi. */
@@ -150,12 +148,9 @@ KD_LANE_FN kd_lane pt_gltf_specular(kd_lane roughness, kd_lane3 n, kd_lane3 wo, 
   KD_LANE_MASK below = (cos_o <= 0.0f) | (cos_i <= 0.0f);
   if (!kd_any(!below)) return (kd_lane)0.0f;
   kd_lane alpha2 = pt_ggx_alpha2(roughness);
-  kd_lane d_pdf, d_o_h;
-  kd_lane d = pt_ggx_half_vector_d(alpha2, n, wo, wi, &d_pdf, &d_o_h);
+  kd_lane d = pt_ggx_half_vector_d(alpha2, n, wo, wi, below, pdf, o_h);
   kd_lane g_denominator = cos_o * sqrt(alpha2 + (1.0f - alpha2) * cos_i * cos_i) +
                           cos_i * sqrt(alpha2 + (1.0f - alpha2) * cos_o * cos_o);
-  *pdf = kd_select(below, *pdf, d_pdf);
-  *o_h = kd_select(below, *o_h, d_o_h);
   return kd_select(below, (kd_lane)0.0f, d * cos_i / (2.0f * g_denominator));
 }
 /* The dielectric's Schlick Fresnel, f0 from its index of refraction (0.04 at glTF's 1.5). */

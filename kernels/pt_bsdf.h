@@ -43,8 +43,10 @@ KD_LANE_FN kd_lane pt_schlick_weight(kd_lane cos_theta) {
 KD_LANE_FN kd_lane3 pt_schlick(kd_lane3 f0, kd_lane cos_theta) {
   return f0 + (1.0f - f0) * pt_schlick_weight(cos_theta);
 }
+/* GGX's alpha for a roughness, kept off 0 so that D stays finite. */
+KD_LANE_FN kd_lane pt_ggx_alpha(kd_lane roughness) { return fmax(roughness, 1e-3f); }
 KD_LANE_FN kd_lane pt_ggx_alpha2(kd_lane roughness) {
-  kd_lane alpha = fmax(roughness, 1e-3f);
+  kd_lane alpha = pt_ggx_alpha(roughness);
   return alpha * alpha;
 }
 /* D(h) for the half vector h of wo and wi, with wo . h and the pdf of drawing wi by
@@ -61,10 +63,12 @@ KD_LANE_FN kd_lane pt_ggx_half_vector_d(kd_lane alpha2, kd_lane3 n, kd_lane3 wo,
   *pdf = kd_select(below, *pdf, d * pt_ggx_g1(cos_o, alpha2) / (4.0f * cos_o));
   return d;
 }
-/* D * G / (4 cos(wo)) (f * cos(wi) without the Fresnel factor) with the separable Smith G, the pdf
- * of sampling wi by pt_ggx_sample_wi, and wo . h. */
-KD_LANE_FN kd_lane pt_ggx_eval_common(kd_lane roughness, kd_lane3 n, kd_lane3 wo, kd_lane3 wi, kd_lane* pdf,
-                                     kd_lane* o_h) {
+/* A GGX lobe's D * G / (4 cos(wo)) (its f * cos(wi) without the Fresnel factor), the pdf of
+ * sampling wi by pt_ggx_sample_wi, and wo . h. G is the separable Smith G of the rough conductor,
+ * or where height_correlated the glTF specification's height-correlated Smith masking-shadowing
+ * function, 2 cos_o cos_i / (cos_o sqrt(a2 + (1 - a2) cos_i^2) + cos_i sqrt(a2 + (1 - a2) cos_o^2)). */
+KD_LANE_FN kd_lane pt_ggx_lobe(kd_lane roughness, int height_correlated, kd_lane3 n, kd_lane3 wo, kd_lane3 wi,
+                              kd_lane* pdf, kd_lane* o_h) {
   *pdf = 0.0f;
   *o_h = 1.0f;
   kd_lane cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
@@ -72,13 +76,21 @@ KD_LANE_FN kd_lane pt_ggx_eval_common(kd_lane roughness, kd_lane3 n, kd_lane3 wo
   if (!kd_any(!below)) return (kd_lane)0.0f;
   kd_lane alpha2 = pt_ggx_alpha2(roughness);
   kd_lane d = pt_ggx_half_vector_d(alpha2, n, wo, wi, below, pdf, o_h);
-  kd_lane g = pt_ggx_g1(cos_o, alpha2) * pt_ggx_g1(cos_i, alpha2);
-  return kd_select(below, (kd_lane)0.0f, d * g / (4.0f * cos_o));
+  kd_lane value;
+  if (height_correlated) {
+    kd_lane g_denominator = cos_o * sqrt(alpha2 + (1.0f - alpha2) * cos_i * cos_i) +
+                            cos_i * sqrt(alpha2 + (1.0f - alpha2) * cos_o * cos_o);
+    value = d * cos_i / (2.0f * g_denominator);
+  } else {
+    kd_lane g = pt_ggx_g1(cos_o, alpha2) * pt_ggx_g1(cos_i, alpha2);
+    value = d * g / (4.0f * cos_o);
+  }
+  return kd_select(below, (kd_lane)0.0f, value);
 }
 /* f * cos(wi) and the pdf of sampling wi by pt_ggx_sample_wi. */
 KD_LANE_FN kd_lane3 pt_ggx_eval(kd_lane3 color, kd_lane roughness, kd_lane3 n, kd_lane3 wo, kd_lane3 wi, kd_lane* pdf) {
   kd_lane o_h;
-  kd_lane common = pt_ggx_eval_common(roughness, n, wo, wi, pdf, &o_h);
+  kd_lane common = pt_ggx_lobe(roughness, 0, n, wo, wi, pdf, &o_h);
   return kd_select(common > 0.0f, pt_schlick(color, o_h) * common, KD_LANE3(0.0f, 0.0f, 0.0f));
 }
 /* wo reflected about a normal drawn from those visible from wo (Heitz, "Sampling the GGX
@@ -87,7 +99,7 @@ KD_LANE_FN kd_lane3 pt_ggx_eval(kd_lane3 color, kd_lane roughness, kd_lane3 n, k
  * hemisphere and unstretched. The sample's weight keeps only Fresnel and G2 / G1(wo), so smooth
  * metals add far less noise than with half vectors drawn from D(h) cos(h). */
 KD_LANE_FN kd_lane3 pt_ggx_sample_wi(kd_lane roughness, kd_lane3 n, kd_lane3 wo, kd_lane u1, kd_lane u2) {
-  kd_lane alpha = fmax(roughness, 1e-3f);
+  kd_lane alpha = pt_ggx_alpha(roughness);
   kd_lane3 t, b;
   pt_basis(n, &t, &b);
   kd_lane3 vh = kd_normalize(KD_LANE3(alpha * kd_dot(wo, t), alpha * kd_dot(wo, b), kd_dot(wo, n)));
@@ -136,23 +148,6 @@ KD_LANE_FN kd_lane3 pt_glass_refraction(kd_lane eta, kd_lane cos_i, kd_lane cos_
 #endif
 
 #ifdef KD_FEATURE_METALLIC_ROUGHNESS
-/* The glTF specular layer's D * G / (4 cos(wo)) (its f * cos(wi) without the Fresnel factor):
- * the specification's G is the height-correlated Smith masking-shadowing function,
- * 2 cos_o cos_i / (cos_o sqrt(a2 + (1 - a2) cos_i^2) + cos_i sqrt(a2 + (1 - a2) cos_o^2)), not the
- * separable one of the rough conductor. Also the pdf of pt_ggx_sample_wi and wo . h. */
-KD_LANE_FN kd_lane pt_gltf_specular(kd_lane roughness, kd_lane3 n, kd_lane3 wo, kd_lane3 wi, kd_lane* pdf,
-                                    kd_lane* o_h) {
-  *pdf = 0.0f;
-  *o_h = 1.0f;
-  kd_lane cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
-  KD_LANE_MASK below = (cos_o <= 0.0f) | (cos_i <= 0.0f);
-  if (!kd_any(!below)) return (kd_lane)0.0f;
-  kd_lane alpha2 = pt_ggx_alpha2(roughness);
-  kd_lane d = pt_ggx_half_vector_d(alpha2, n, wo, wi, below, pdf, o_h);
-  kd_lane g_denominator = cos_o * sqrt(alpha2 + (1.0f - alpha2) * cos_i * cos_i) +
-                          cos_i * sqrt(alpha2 + (1.0f - alpha2) * cos_o * cos_o);
-  return kd_select(below, (kd_lane)0.0f, d * cos_i / (2.0f * g_denominator));
-}
 /* The dielectric's Schlick Fresnel, f0 from its index of refraction (0.04 at glTF's 1.5). */
 KD_LANE_FN kd_lane pt_gltf_dielectric_fresnel(kd_lane ior, kd_lane cos_theta) {
   kd_lane r = (ior - 1.0f) / (ior + 1.0f);
@@ -176,7 +171,7 @@ KD_LANE_FN kd_lane pt_gltf_ggx_probability(kd_lane metallic, kd_lane ior, kd_lan
 KD_LANE_FN kd_lane3 pt_metal_rough_eval(kd_lane roughness, kd_lane ior, kd_lane metallic, kd_lane3 color, kd_lane3 n,
                                         kd_lane3 wo, kd_lane3 wi, kd_lane* pdf) {
   kd_lane ggx_pdf, o_h;
-  kd_lane specular = pt_gltf_specular(roughness, n, wo, wi, &ggx_pdf, &o_h);
+  kd_lane specular = pt_ggx_lobe(roughness, 1, n, wo, wi, &ggx_pdf, &o_h);  /* the glTF specular layer */
   kd_lane cos_o = kd_dot(n, wo), cos_i = kd_dot(n, wi);
   *pdf = 0.0f;
   KD_LANE_MASK below = (cos_o <= 0.0f) | (cos_i <= 0.0f);

@@ -43,15 +43,12 @@ struct Paths {
   int alive = 0, shadow = 0;  // bit per lane
 };
 
-// The words shade() gathers: a HitRecord's t, triangle, u and v, a PtMaterial's base colour, type
-// and emission.
+// The words shade() gathers of a HitRecord: t, triangle, u and v.
 static_assert(sizeof(HitRecord) == 16 && KD_OFFSETOF(HitRecord, t) == 0 && KD_OFFSETOF(HitRecord, triangle) == 4 &&
                   KD_OFFSETOF(HitRecord, u) == 8 && KD_OFFSETOF(HitRecord, v) == 12,
               "HitRecord: 4 words t, triangle, u, v");
-static_assert(sizeof(PtMaterial) == 16 * 4 && KD_OFFSETOF(PtMaterial, base_color) == 0 &&
-                  KD_OFFSETOF(PtMaterial, type) == 3 * 4 && KD_OFFSETOF(PtMaterial, emission) == 4 * 4,
-              "PtMaterial: 16 words, base colour at 0, type at 3, emission at 4");
-// The word of a PtMaterial member.
+// A PtMaterial's words (4-byte members only, kernels/pt_types.h), and the word of a member.
+constexpr int kMaterialWords = sizeof(PtMaterial) / 4;
 #define PATH_LANES_MATERIAL_WORD(member) (KD_OFFSETOF(PtMaterial, member) / 4)
 
 // The lanes' float3 from, and to, its coordinates' arrays.
@@ -275,7 +272,8 @@ inline void next_event_on_triangles(Paths& ps, const PtSceneData* scene, const P
   if (!kd_any(ok)) return;
   ps.shadow |= bits(ok);
   const Int8 light_material = gather(reinterpret_cast<const int32_t*>(scene->material_ids), light, ok);
-  const Float8x3 emission = gather3(reinterpret_cast<const float*>(scene->materials), light_material, 16, 4, ok);
+  const Float8x3 emission = gather3(reinterpret_cast<const float*>(scene->materials), light_material, kMaterialWords,
+                                    PATH_LANES_MATERIAL_WORD(emission), ok);
   const Float8 pick_per_area = params->select_triangles * pt_luminance(emission) * params->light_area_pdf_scale;
   const Float8 light_pdf = pt_triangle_light_pdf(pick_per_area, 0.5f * twice_area, solid_angle, dist2, cos_light);
   const Float8 weight = pt_mis_light(params, light_pdf, pdf);
@@ -359,17 +357,16 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   const Int8 material = gather(reinterpret_cast<const int32_t*>(scene->material_ids), tri, active);
   const float* material_floats = reinterpret_cast<const float*>(scene->materials);
   const int32_t* material_words = reinterpret_cast<const int32_t*>(scene->materials);
-  const Int8 type = gather(material_words + 3, material * 16, active);
+  const Int8 words = material * kMaterialWords;  // each lane's PtMaterial
+  const Int8 type = gather(material_words + PATH_LANES_MATERIAL_WORD(type), words, active);
   // every kind of material (an unknown type is Lambertian in lanes as in pt_bsdf_sample), if it is
   // opaque (pt_alpha_passes lets no ray through) and has no emission texture (pt_textured_emission)
   Mask8 in_lanes = active;
   if (PT_USES(params, PT_FEATURE_ALPHA)) {
-    in_lanes = in_lanes &
-               (gather(material_floats + PATH_LANES_MATERIAL_WORD(alpha_cutoff), material * 16, active) == 0.0f);
+    in_lanes = in_lanes & (gather(material_floats + PATH_LANES_MATERIAL_WORD(alpha_cutoff), words, active) == 0.0f);
   }
   if (PT_USES(params, PT_FEATURE_EMISSIVE_TEXTURE)) {
-    in_lanes = in_lanes &
-               !(gather(material_words + PATH_LANES_MATERIAL_WORD(emissive_texture), material * 16, active) >= 0);
+    in_lanes = in_lanes & !(gather(material_words + PATH_LANES_MATERIAL_WORD(emissive_texture), words, active) >= 0);
   }
   by_lane |= bits(active & !in_lanes);
   shade_lane_by_lane(ps, by_lane, scene, params, hits);
@@ -400,23 +397,19 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
     n = kd_select(kd_dot(ns, ns) > 0.0f, kd_select(kd_dot(unit, ng_facing) < 0.0f, -unit, unit), ng_facing);
   }
   LaneBsdf bsdf;
-  bsdf.color = gather3(material_floats, material, 16, 0, active);
+  bsdf.color = gather3(material_floats, material, kMaterialWords, PATH_LANES_MATERIAL_WORD(base_color), active);
   bsdf.metal_rough = active & (type == (int32_t)PT_METALLIC_ROUGHNESS);
   bsdf.conductor = active & (type == (int32_t)PT_ROUGH_CONDUCTOR);
   bsdf.mirror = active & (type == (int32_t)PT_MIRROR);
   bsdf.glass = active & (type == (int32_t)PT_DIELECTRIC);
   bsdf.entering = front;
-  {
-    const Int8 words = material * 16;
-    const Mask8 rough = bsdf.metal_rough | bsdf.conductor, refracting = bsdf.metal_rough | bsdf.glass;
-    if (kd_any(rough)) bsdf.roughness = gather(material_floats + PATH_LANES_MATERIAL_WORD(roughness), words, rough);
-    if (kd_any(refracting)) bsdf.ior = gather(material_floats + PATH_LANES_MATERIAL_WORD(ior), words, refracting);
-    if (kd_any(bsdf.metal_rough)) {
-      bsdf.metallic = gather(material_floats + PATH_LANES_MATERIAL_WORD(metallic), words, bsdf.metal_rough);
-    }
+  const Mask8 rough = bsdf.metal_rough | bsdf.conductor, refracting = bsdf.metal_rough | bsdf.glass;
+  if (kd_any(rough)) bsdf.roughness = gather(material_floats + PATH_LANES_MATERIAL_WORD(roughness), words, rough);
+  if (kd_any(refracting)) bsdf.ior = gather(material_floats + PATH_LANES_MATERIAL_WORD(ior), words, refracting);
+  if (kd_any(bsdf.metal_rough)) {
+    bsdf.metallic = gather(material_floats + PATH_LANES_MATERIAL_WORD(metallic), words, bsdf.metal_rough);
   }
   if (PT_USES(params, PT_FEATURE_TEXTURES)) {
-    const Int8 words = material * 16;
     Mask8 textured = {};
     for (size_t texture : {PATH_LANES_MATERIAL_WORD(texture), PATH_LANES_MATERIAL_WORD(metal_rough_texture),
                            PATH_LANES_MATERIAL_WORD(normal_texture)})
@@ -439,7 +432,8 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   const Float8 bsdf_pdf = load(ps.bsdf_pdf);
   const Mask8 emissive = active & (type == (int32_t)PT_EMISSIVE) & front;
   if (PT_USES(params, PT_FEATURE_EMISSION) && kd_any(emissive)) {
-    const Float8x3 emission = gather3(material_floats, material, 16, 4, emissive);
+    const Float8x3 emission =
+        gather3(material_floats, material, kMaterialWords, PATH_LANES_MATERIAL_WORD(emission), emissive);
     Float8 weight = 1.0f;
     const Mask8 mis = emissive & (bsdf_pdf > 0.0f);
     if (kd_any(mis)) {

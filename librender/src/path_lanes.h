@@ -186,20 +186,22 @@ inline Float8x3 bsdf_sample(const LaneBsdf& m, Float8x3 n, Float8x3 wo, Float8 u
   *pdf = fmax(kd_dot(n, wi), 0.0f) * PT_INV_PI;
   *weight = kd_select(*pdf > 0.0f, m.color, Float8x3{});
   *transmits = Mask8{};
+  // a glossy lobe's lanes: the sample's pdf and weight f * cos / pdf from the lobe's evaluation
+  auto take_glossy = [&](Mask8 lanes, Float8x3 f_cos, Float8 lobe_pdf) {
+    *pdf = kd_select(lanes, lobe_pdf, *pdf);
+    *weight = kd_select(lanes, kd_select(lobe_pdf > 0.0f, f_cos / lobe_pdf, Float8x3{}), *weight);
+  };
+  Float8 lobe_pdf;
   if (kd_any(m.metal_rough)) {
     const Mask8 ggx = m.metal_rough & (u_lobe < pt_gltf_ggx_probability(m.metallic, m.ior, m.color, kd_dot(n, wo)));
     if (kd_any(ggx)) wi = kd_select(ggx, pt_ggx_sample_wi(m.roughness, n, wo, u1, u2), wi);
-    Float8 lobe_pdf;
     const Float8x3 f_cos = pt_metal_rough_eval(m.roughness, m.ior, m.metallic, m.color, n, wo, wi, &lobe_pdf);
-    *pdf = kd_select(m.metal_rough, lobe_pdf, *pdf);
-    *weight = kd_select(m.metal_rough, kd_select(lobe_pdf > 0.0f, f_cos / lobe_pdf, Float8x3{}), *weight);
+    take_glossy(m.metal_rough, f_cos, lobe_pdf);
   }
   if (kd_any(m.conductor)) {
     wi = kd_select(m.conductor, pt_ggx_sample_wi(m.roughness, n, wo, u1, u2), wi);
-    Float8 lobe_pdf;
     const Float8x3 f_cos = pt_ggx_eval(m.color, m.roughness, n, wo, wi, &lobe_pdf);
-    *pdf = kd_select(m.conductor, lobe_pdf, *pdf);
-    *weight = kd_select(m.conductor, kd_select(lobe_pdf > 0.0f, f_cos / lobe_pdf, Float8x3{}), *weight);
+    take_glossy(m.conductor, f_cos, lobe_pdf);
   }
   if (kd_any(m.mirror)) {
     wi = kd_select(m.mirror, 2.0f * kd_dot(wo, n) * n - wo, wi);

@@ -72,7 +72,7 @@ void count_ray(const kdray::Scene& scene, const kdray::KdTree& tree, const RayRe
     const uint32_t first = kd_leaf_first(current), count = kd_leaf_count(current);
     counters.tests += count;
     for (uint32_t i = 0; i < count; ++i) {
-      const uint32_t triangle = tree.leaf_blocks[first + i];
+      const uint32_t triangle = kd_leaf_index(tree.leaf_blocks.data() + first, kd_leaf_grouped(current), i);
       float corners[3][3];
       for (int c = 0; c < 3; ++c) {
         const kdray::Vec3& p = scene.positions[scene.indices[3 * static_cast<size_t>(triangle) + c]];

@@ -34,6 +34,7 @@ typedef float4 kd_f4;
 typedef int4 kd_i4;
 #define KD_F4(a, b, c, d) ((float4)((a), (b), (c), (d)))
 KD_HOT_INLINE void kd_f4_store(kd_f4 v, float* p) { vstore4(v, 0, p); }
+KD_HOT_INLINE kd_f4 kd_f4_load(KD_GLOBAL const float* p) { return vload4(0, p); }
 /* Bit k set where lane k of the mask is -1. */
 KD_HOT_INLINE kd_u32 kd_i4_bits(kd_i4 mask) { return (kd_u32)((mask.x & 1) | (mask.y & 2) | (mask.z & 4) | (mask.w & 8)); }
 /* The index of the lowest set bit of a nonzero word. */
@@ -69,6 +70,11 @@ typedef float kd_f4 __attribute__((vector_size(16)));
 typedef kd_i32 kd_i4 __attribute__((vector_size(16)));
 #define KD_F4(a, b, c, d) (kd_f4{(a), (b), (c), (d)})
 inline void kd_f4_store(kd_f4 v, float* p) { std::memcpy(p, &v, sizeof v); }
+inline kd_f4 kd_f4_load(const float* p) {
+  kd_f4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
 inline kd_u32 kd_i4_bits(kd_i4 mask) {
 #ifdef __SSE__
   return (kd_u32)__builtin_ia32_movmskps((kd_f4)mask);

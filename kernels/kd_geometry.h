@@ -164,14 +164,16 @@ KD_INLINE int kd_ray_box(const KdRay* ray, const float bmin[3], const float bmax
   ((U) * ((ray)->sz * (Az)) + (V) * ((ray)->sz * (Bz)) + (W) * ((ray)->sz * (Cz)))
 
 /* Watertight ray/triangle test against the whole line of the ray. Returns 1 when the line
- * passes through the triangle (a, b, c) and writes its t and the barycentrics u (of b) and
+ * passes through the triangle (a, b, c), whose coordinates lie `stride` floats apart (1: x, y, z
+ * side by side; a grouped leaf block's 4), and writes its t and the barycentrics u (of b) and
  * v (of c); the caller decides which t it accepts. Triangles seen edge-on (determinant 0) are
  * missed from both sides. The corners are read where they lie (the kernels: the leaf blocks
  * in global memory), in the ray's axis order: copied into local arrays first, they
  * were stored to the stack and read back by index, at a dozen instructions per test. */
 KD_HOT_INLINE int kd_ray_triangle_line(const KdRay* ray, KD_GLOBAL const float* a, KD_GLOBAL const float* b,
-                                       KD_GLOBAL const float* c, float* t_out, float* u_out, float* v_out) {
-  const int kx = ray->kx, ky = ray->ky, kz = ray->kz;
+                                       KD_GLOBAL const float* c, int stride, float* t_out, float* u_out,
+                                       float* v_out) {
+  const int kx = ray->kx * stride, ky = ray->ky * stride, kz = ray->kz * stride;
   KD_WATERTIGHT_EDGES(float, ray, a[kx], a[ky], a[kz], b[kx], b[ky], b[kz], c[kx], c[ky], c[kz]);
 #if KD_HAS_DOUBLE
   if (U == 0.0f || V == 0.0f || W == 0.0f) {
@@ -195,7 +197,7 @@ KD_HOT_INLINE int kd_ray_triangle_line(const KdRay* ray, KD_GLOBAL const float* 
 KD_INLINE int kd_ray_triangle(const KdRay* ray, KD_GLOBAL const float* a, KD_GLOBAL const float* b,
                               KD_GLOBAL const float* c, float t_max, float* t_out, float* u_out, float* v_out) {
   float t, u, v;
-  if (!kd_ray_triangle_line(ray, a, b, c, &t, &u, &v) || !(t > ray->tmin && t < t_max)) return 0;
+  if (!kd_ray_triangle_line(ray, a, b, c, 1, &t, &u, &v) || !(t > ray->tmin && t < t_max)) return 0;
   *t_out = t;
   *u_out = u;
   *v_out = v;

@@ -283,12 +283,24 @@ KD_INLINE int kd_lane_step(KdLaneGroup* g, const KdSceneView* scene, KdLaneRays*
     } while (pushes);
   }
   if (arriving) {
-    kd_u32 first_word[KD_LANES];
+    kd_u32 first_word[KD_LANES], leaf_header[KD_LANES];
     kd_lane_store_i(payload, first_word);
+    kd_lane_store_i(header, leaf_header);
     do {
-      KD_GLOBAL const kd_u32* block = scene->leaf_blocks + first_word[kd_lowest_bit(arriving)];
+      const int k = kd_lowest_bit(arriving);
+      KD_GLOBAL const kd_u32* block = scene->leaf_blocks + first_word[k];
+      /* A paged block's first two lines; a grouped block whole, up to four groups, since its
+       * size is known from the count (a group is two and a half lines). */
       KD_PREFETCH(block);
       KD_PREFETCH(block + 16);
+      KdNode leaf;
+      leaf.payload = first_word[k];
+      leaf.header = leaf_header[k];
+      if (kd_leaf_grouped(leaf)) {
+        const kd_u32 groups = (kd_leaf_count(leaf) + 3u) / 4u;
+        const kd_u32 words = KD_LEAF_GROUP_WORDS * (groups < 4u ? groups : 4u);
+        for (kd_u32 w = 32u; w < words; w += 16u) KD_PREFETCH(block + w);
+      }
       arriving &= arriving - 1u;
     } while (arriving);
   }

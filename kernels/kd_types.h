@@ -12,7 +12,8 @@
  *          traversal skips it without a load. The below child, when it is a node, is the next
  *          node in the array; the above child, when it is a node, is far_child (0 when it is not).
  *   leaf:  payload = the first word of its block in the leaf-block array (below);
- *          header = count << 2 | 3, count = its triangles (0 only for the root of an empty scene). */
+ *          header = count << 3 | grouped << 2 | 3, count = its triangles (0 only for the root
+ *          of an empty scene), grouped = its block's layout (below). */
 typedef struct KdNode {
   kd_u32 payload;
   kd_u32 header;
@@ -29,7 +30,9 @@ KD_STATIC_ASSERT(sizeof(KdNode) == 8 && KD_OFFSETOF(KdNode, header) == 4,
 #define KD_ABOVE_EMPTY 8u
 #define KD_CHILD_SHIFT 4u
 #define KD_MAX_CHILD_INDEX ((1u << 28) - 1u)
-#define KD_MAX_LEAF_COUNT ((1u << 30) - 1u)
+#define KD_LEAF_GROUPED 4u
+#define KD_LEAF_COUNT_SHIFT 3u
+#define KD_MAX_LEAF_COUNT ((1u << 29) - 1u)
 
 KD_INLINE int kd_node_is_leaf(KdNode node) { return (node.header & 3u) == KD_LEAF_TAG; }
 KD_INLINE kd_u32 kd_node_axis(KdNode node) { return node.header & 3u; }
@@ -45,10 +48,19 @@ KD_INLINE kd_u32 kd_node_child(KdNode node, kd_u32 node_index, kd_u32 above) {
 }
 KD_INLINE kd_u32 kd_node_child_empty(KdNode node, kd_u32 above) { return (node.header >> (2u + above)) & 1u; }
 KD_INLINE kd_u32 kd_leaf_first(KdNode node) { return node.payload; }
-KD_INLINE kd_u32 kd_leaf_count(KdNode node) { return node.header >> 2; }
+KD_INLINE kd_u32 kd_leaf_count(KdNode node) { return node.header >> KD_LEAF_COUNT_SHIFT; }
+KD_INLINE int kd_leaf_grouped(KdNode node) { return (node.header & KD_LEAF_GROUPED) != 0u; }
+KD_INLINE KdNode kd_leaf_node(kd_u32 first_word, kd_u32 count, int grouped) {
+  KdNode node;
+  node.payload = first_word;
+  node.header = count << KD_LEAF_COUNT_SHIFT | (grouped ? KD_LEAF_GROUPED : 0u) | KD_LEAF_TAG;
+  return node;
+}
 
-/* A leaf's block of 32-bit words in the leaf-block array (formats/kdtree.md), for a leaf of
- * count triangles, its first word where the leaf's node points:
+/* A leaf's block of 32-bit words in the leaf-block array (formats/kdtree.md), its first word
+ * where the leaf's node points, in one of two layouts that the leaf's header names.
+ *
+ * Paged (grouped bit 0), for a leaf of count triangles:
  *   words [0, count):          each triangle's index in the scene;
  *   words [count, 2 count):    each triangle's corners a, b, c as three numbers of 10 bits,
  *                              a | b << 10 | c << 20 (bits 30 and 31 zero);
@@ -60,7 +72,21 @@ KD_INLINE kd_u32 kd_leaf_count(KdNode node) { return node.header >> 2; }
  * 3 x 256 = 768 distinct ones, so 10 bits always suffice); every page but the last is padded to
  * KD_LEAF_PAGE_CORNERS corners. Leaves of at most 256 triangles, nearly all, have one page. A
  * leaf's triangles share most of their corners (a mesh's neighbours do), so a block is about
- * half the bytes of three corners per triangle, and a leaf is one contiguous read. */
+ * half the bytes of three corners per triangle, and a leaf is one contiguous read.
+ *
+ * Grouped (grouped bit 1): the triangles four at a time, KD_LEAF_GROUP_WORDS words a group, the
+ * last group filled up with copies of its first triangle:
+ *   words [0, 4):              the four triangles' indices in the scene;
+ *   word 4 + 12 k + 4 j + l:   coordinate j (x, y, z) of corner k (a, b, c) of triangle l.
+ * A coordinate of one corner of the four is one four-wide load, at an offset the ray's axis
+ * order picks, where the paged layout takes four loads and three shuffles after decoding the
+ * corner numbers; each triangle has its corners in full, about twice the paged bytes. */
+#define KD_LEAF_GROUP_WORDS 40u
+
+/* The scene index of triangle i of a leaf whose block starts at `block`, in either layout. */
+KD_INLINE kd_u32 kd_leaf_index(KD_GLOBAL const kd_u32* block, int grouped, kd_u32 i) {
+  return grouped ? block[KD_LEAF_GROUP_WORDS * (i / 4u) + i % 4u] : block[i];
+}
 #define KD_LEAF_CORNER_BITS 10u
 #define KD_LEAF_CORNER_MASK ((1u << KD_LEAF_CORNER_BITS) - 1u)
 #define KD_LEAF_PAGE_TRIANGLES 256u

@@ -246,8 +246,7 @@ void Subtree::add_leaf(const uint32_t* triangles, size_t count) {
   if (count == 0) return;
   if (count > KD_MAX_LEAF_COUNT || leaf_triangles.size() + count > UINT32_MAX)
     throw Error("", "the tree is too large for 32-bit leaf indices");
-  nodes.push_back(KdNode{static_cast<uint32_t>(leaf_triangles.size()),
-                         static_cast<uint32_t>(count) << 2 | KD_LEAF_TAG});
+  nodes.push_back(kd_leaf_node(static_cast<uint32_t>(leaf_triangles.size()), static_cast<uint32_t>(count), 0));
   leaf_triangles.insert(leaf_triangles.end(), triangles, triangles + count);
 }
 
@@ -346,7 +345,7 @@ RootWork prepare_root(const Scene& scene) {
 KdTree describe_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel,
                      TraversalArray<KdNode>&& nodes) {
   KdTree tree;
-  if (nodes.empty()) nodes.push_back(KdNode{0, KD_LEAF_TAG});  // no triangles: the root is an empty leaf
+  if (nodes.empty()) nodes.push_back(kd_leaf_node(0, 0, 0));  // no triangles: the root is an empty leaf
   tree.nodes = std::move(nodes);
   tree.bounds = Bounds{{voxel.min[0], voxel.min[1], voxel.min[2]}, {voxel.max[0], voxel.max[1], voxel.max[2]}};
   tree.settings = settings;
@@ -357,7 +356,7 @@ KdTree describe_tree(const Scene& scene, const BuildSettings& settings, const Bo
 }
 
 KdTree finish_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel, Subtree&& built) {
-  TraversalArray<uint32_t> blocks = leaf_blocks_of(scene, built.nodes, built.leaf_triangles.data());
+  TraversalArray<uint32_t> blocks = leaf_blocks_of(scene, built.nodes, built.leaf_triangles.data(), settings.leaf_layout);
   KdTree tree = describe_tree(scene, settings, voxel, std::move(built.nodes));
   tree.leaf_blocks = std::move(blocks);
   return tree;

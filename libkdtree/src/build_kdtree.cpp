@@ -23,6 +23,8 @@ BuildSettings BuildSettings::resolved(uint64_t triangles) const {
     const double automatic = 8.0 + std::log2(static_cast<double>(std::max<uint64_t>(triangles, 1)));
     explicit_settings.max_depth = std::min(kAutoMaxDepthCap, static_cast<uint32_t>(automatic));
   }
+  if (leaf_layout == LeafLayout::automatic)
+    explicit_settings.leaf_layout = triangles <= kGroupedLeavesUpTo ? LeafLayout::grouped : LeafLayout::paged;
   return explicit_settings;
 }
 
@@ -98,7 +100,7 @@ TreeSummary build_tree_file(const Scene& scene, const std::string& path, const B
   TreeSummary summary;
   run_with_threads(control.threads, [&] {
     const uint32_t* triangles = built.subtree.leaf_triangles.data();
-    const detail::LeafBlockPlan plan = detail::plan_leaf_blocks(scene, built.subtree.nodes, triangles);
+    const detail::LeafBlockPlan plan = detail::plan_leaf_blocks(scene, built.subtree.nodes, triangles, built.settings.leaf_layout);
     const KdTree described =
         detail::describe_tree(scene, built.settings, built.voxel, std::move(built.subtree.nodes));
     const auto described_at = Clock::now();

@@ -1,5 +1,6 @@
-// Leaf blocks (kernels/kd_types.h): each non-empty leaf's triangle indices, corner numbers and
-// distinct corners, planned once for their sizes and made where they go.
+// Leaf blocks (kernels/kd_types.h): each non-empty leaf's triangles, paged (indices, corner
+// numbers and distinct corners) or grouped (four triangles' indices and corners by axis),
+// planned once for their sizes and made where they go.
 #include "leaf_blocks.h"
 
 #include <kdray/error.h>
@@ -78,7 +79,31 @@ uint64_t block_words(const Scene& scene, const uint32_t* triangles, uint32_t cou
   return 2 * uint64_t{count} + 3 * (uint64_t{KD_LEAF_PAGE_CORNERS} * last_page + corners.vertices.size());
 }
 
-// The block itself, `size` words (block_words), to out; the padding of full pages is zeros.
+// The size in words of a grouped block of `count` triangles.
+uint64_t grouped_block_words(uint32_t count) { return uint64_t{KD_LEAF_GROUP_WORDS} * ((uint64_t{count} + 3) / 4); }
+
+// The grouped block of the leaf of `count` triangles `triangles[0, count)` to out; the last
+// group is filled up with its first triangle.
+void make_grouped_block(const Scene& scene, const uint32_t* triangles, uint32_t count, char* out) {
+  for (uint32_t first = 0; first < count; first += 4, out += 4 * KD_LEAF_GROUP_WORDS) {
+    float corners[36];
+    uint32_t indices[4];
+    for (uint32_t lane = 0; lane < 4; ++lane) {
+      const uint32_t triangle = triangles[first + lane < count ? first + lane : first];
+      indices[lane] = triangle;
+      for (uint32_t corner = 0; corner < 3; ++corner) {
+        const Vec3& p = scene.positions[scene.indices[3 * size_t{triangle} + corner]];
+        corners[12 * corner + lane] = p.x;
+        corners[12 * corner + 4 + lane] = p.y;
+        corners[12 * corner + 8 + lane] = p.z;
+      }
+    }
+    std::memcpy(out, indices, sizeof indices);
+    std::memcpy(out + sizeof indices, corners, sizeof corners);
+  }
+}
+
+// The paged block itself, `size` words (block_words), to out; the padding of full pages is zeros.
 void make_block(const Scene& scene, const uint32_t* triangles, uint32_t count, uint64_t size,
                 PageCorners& corners, std::vector<uint32_t>& numbers, char* out) {
   std::memset(out, 0, 4 * size);
@@ -96,8 +121,11 @@ void make_block(const Scene& scene, const uint32_t* triangles, uint32_t count, u
 
 }  // namespace
 
-LeafBlockPlan plan_leaf_blocks(const Scene& scene, TraversalArray<KdNode>& nodes, const uint32_t* triangles) {
+LeafBlockPlan plan_leaf_blocks(const Scene& scene, TraversalArray<KdNode>& nodes, const uint32_t* triangles,
+                               LeafLayout layout) {
+  if (layout == LeafLayout::automatic) throw Error("", "plan_leaf_blocks: the leaf layout must be resolved");
   LeafBlockPlan plan;
+  plan.grouped = layout == LeafLayout::grouped;
   for (const KdNode& node : nodes)
     if (kd_node_is_leaf(node) && kd_leaf_count(node) > 0) {
       plan.entries.push_back(kd_leaf_first(node));
@@ -108,7 +136,8 @@ LeafBlockPlan plan_leaf_blocks(const Scene& scene, TraversalArray<KdNode>& nodes
   tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves, 1024), [&](const tbb::blocked_range<size_t>& range) {
     PageCorners corners;
     for (size_t leaf = range.begin(); leaf < range.end(); ++leaf)
-      plan.words[leaf + 1] = block_words(scene, triangles + plan.entries[leaf], plan.counts[leaf], corners);
+      plan.words[leaf + 1] = plan.grouped ? grouped_block_words(plan.counts[leaf])
+                                          : block_words(scene, triangles + plan.entries[leaf], plan.counts[leaf], corners);
   });
   for (size_t leaf = 0; leaf < leaves; ++leaf) plan.words[leaf + 1] += plan.words[leaf];
   if (plan.size_words() > UINT32_MAX)
@@ -119,8 +148,9 @@ LeafBlockPlan plan_leaf_blocks(const Scene& scene, TraversalArray<KdNode>& nodes
   size_t next_leaf = 0;
   for (size_t n = 0; n < nodes.size(); ++n) {
     if (!kd_node_is_leaf(nodes[n])) continue;
-    nodes[n].payload = static_cast<uint32_t>(plan.words[next_leaf]);
-    if (kd_leaf_count(nodes[n]) > 0) ++next_leaf;
+    const uint32_t count = kd_leaf_count(nodes[n]);
+    nodes[n] = kd_leaf_node(static_cast<uint32_t>(plan.words[next_leaf]), count, plan.grouped && count > 0);
+    if (count > 0) ++next_leaf;
   }
   return plan;
 }
@@ -146,14 +176,18 @@ void leaf_block_bytes(const Scene& scene, const uint32_t* triangles, const LeafB
       const uint64_t block_begin = 4 * words[leaf], block_end = 4 * words[leaf + 1];
       const uint64_t size = words[leaf + 1] - words[leaf];
       const uint32_t* leaf_triangles = triangles + plan.entries[leaf];
+      auto make = [&](char* to) {
+        if (plan.grouped)
+          make_grouped_block(scene, leaf_triangles, plan.counts[leaf], to);
+        else
+          make_block(scene, leaf_triangles, plan.counts[leaf], size, scratch.corners, scratch.numbers, to);
+      };
       if (block_begin >= begin && block_end <= end) {
-        make_block(scene, leaf_triangles, plan.counts[leaf], size, scratch.corners, scratch.numbers,
-                   out + (block_begin - begin));
+        make(out + (block_begin - begin));
         continue;
       }
       scratch.block.resize(4 * size);
-      make_block(scene, leaf_triangles, plan.counts[leaf], size, scratch.corners, scratch.numbers,
-                 scratch.block.data());
+      make(scratch.block.data());
       const uint64_t from = std::max(begin, block_begin), to = std::min(end, block_end);
       std::memcpy(out + (from - begin), scratch.block.data() + (from - block_begin), to - from);
     }
@@ -162,8 +196,9 @@ void leaf_block_bytes(const Scene& scene, const uint32_t* triangles, const LeafB
 
 }  // namespace detail
 
-TraversalArray<uint32_t> leaf_blocks_of(const Scene& scene, TraversalArray<KdNode>& nodes, const uint32_t* triangles) {
-  const detail::LeafBlockPlan plan = detail::plan_leaf_blocks(scene, nodes, triangles);
+TraversalArray<uint32_t> leaf_blocks_of(const Scene& scene, TraversalArray<KdNode>& nodes, const uint32_t* triangles,
+                                        LeafLayout layout) {
+  const detail::LeafBlockPlan plan = detail::plan_leaf_blocks(scene, nodes, triangles, layout);
   TraversalArray<uint32_t> blocks(plan.size_words());
   detail::leaf_block_bytes(scene, triangles, plan, 0, 4 * plan.size_words(), reinterpret_cast<char*>(blocks.data()));
   return blocks;

@@ -16,14 +16,17 @@ struct LeafBlockPlan {
   std::vector<uint32_t> entries;  // the leaf's first entry of the builder's triangle array
   std::vector<uint32_t> counts;   // its triangles
   std::vector<uint64_t> words;    // its block's first word; then one more, the array's size
+  bool grouped = false;           // the layout (kernels/kd_types.h)
   uint64_t size_words() const { return words.back(); }
 };
 
 // Plans the blocks of the leaves of `nodes`, whose payloads are still their first entries of
-// `triangles` (the builder's array of scene triangle indices), and sets each leaf's payload to
-// its block's first word (an empty leaf's to where the next block starts). Throws kdray::Error
-// when the array would outgrow the 32-bit payloads.
-LeafBlockPlan plan_leaf_blocks(const Scene& scene, TraversalArray<KdNode>& nodes, const uint32_t* triangles);
+// `triangles` (the builder's array of scene triangle indices), in `layout` (grouped or paged),
+// and sets each leaf's payload to its block's first word (an empty leaf's to where the next
+// block starts) and its header's layout bit. Throws kdray::Error when the array would outgrow
+// the 32-bit payloads.
+LeafBlockPlan plan_leaf_blocks(const Scene& scene, TraversalArray<KdNode>& nodes, const uint32_t* triangles,
+                               LeafLayout layout);
 
 // Bytes [begin, end) of the planned leaf-block array, to out; made in parallel.
 void leaf_block_bytes(const Scene& scene, const uint32_t* triangles, const LeafBlockPlan& plan, uint64_t begin,

@@ -64,7 +64,7 @@ std::string encode_settings(const BuildSettings& settings) {
   {
     cereal::PortableBinaryOutputArchive archive(stream);
     archive(settings.traversal_cost, settings.intersection_cost, settings.empty_bonus, settings.max_depth,
-            settings.perfect_splits);
+            settings.perfect_splits, static_cast<uint8_t>(settings.leaf_layout));
     if (settings.binned_above != 0) archive(settings.binned_above, settings.bins);
   }
   return stream.str();
@@ -77,8 +77,13 @@ BuildSettings decode_settings(const std::string& bytes, const std::string& path)
   try {
     std::istringstream stream(bytes);
     cereal::PortableBinaryInputArchive archive(stream);
+    uint8_t layout = 0;
     archive(settings.traversal_cost, settings.intersection_cost, settings.empty_bonus, settings.max_depth,
-            settings.perfect_splits);
+            settings.perfect_splits, layout);
+    settings.leaf_layout = static_cast<LeafLayout>(layout);
+    // A tree records the layout its leaves were written in, never "automatic".
+    if (settings.leaf_layout != LeafLayout::grouped && settings.leaf_layout != LeafLayout::paged)
+      throw Error(path, "damaged parameters section");
     binned = stream.peek() != std::char_traits<char>::eof();
     if (binned) archive(settings.binned_above, settings.bins);
   } catch (const std::exception&) {
@@ -89,15 +94,29 @@ BuildSettings decode_settings(const std::string& bytes, const std::string& path)
   return settings;
 }
 
+// The words a leaf of `count` triangles claims at its block's start: a paged block's indices and
+// corner numbers (its corners follow, checked by leaf_block_problem), a grouped block's groups.
+uint64_t claimed_words(uint64_t count, bool grouped) {
+  return grouped ? KD_LEAF_GROUP_WORDS * ((count + 3) / 4) : 2 * count;
+}
+
 // What is wrong with the block of a leaf of `count` (> 0) triangles at word `first` of the
-// leaf-block array of `size` words (first + 2 count <= size), or null: every triangle index
-// below `triangles`, bits 30 and 31 of every corner-number word zero, and every corner it
-// numbers inside the array. Nothing else matters to a traversal, which reads no other word.
-const char* leaf_block_problem(const uint32_t* blocks, uint64_t size, uint64_t first, uint32_t count,
+// leaf-block array of `size` words (its claimed words inside it), or null: every triangle index
+// below `triangles` and, in a paged block, bits 30 and 31 of every corner-number word zero and
+// every corner it numbers inside the array. Nothing else matters to a traversal, which reads no
+// other word (a grouped block's corners are any float bits, and the indices of the lanes that
+// fill up its last group are never read).
+const char* leaf_block_problem(const uint32_t* blocks, uint64_t size, uint64_t first, uint32_t count, bool grouped,
                                uint64_t triangles) {
+  uint32_t largest_index = 0;
+  if (grouped) {
+    for (uint32_t i = 0; i < count; ++i)
+      largest_index = std::max(largest_index, blocks[first + KD_LEAF_GROUP_WORDS * (i / 4) + i % 4]);
+    return largest_index >= triangles ? "holds a triangle index beyond the scene's triangles" : nullptr;
+  }
   const uint32_t* indices = blocks + first;
   const uint32_t* numbers = indices + count;
-  uint32_t largest_index = 0, high_bits = 0;
+  uint32_t high_bits = 0;
   uint64_t corners_needed = 0;  // one past the highest corner numbered
   for (uint32_t i = 0; i < count; ++i) {
     largest_index = std::max(largest_index, indices[i]);
@@ -118,6 +137,7 @@ struct LeafSpan {
   uint64_t node;
   uint64_t first;  // the block's first word
   uint64_t count;  // its triangles
+  bool grouped;    // its block's layout
 };
 
 // Checks that the nodes [begin, end) form one subtree whose root is `begin`, at `depth`, in the
@@ -145,7 +165,7 @@ void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end,
   constexpr size_t kBatch = 512;  // leaves whose blocks are checked together; 12 KiB, in L1
   LeafSpan spans[kBatch + 1];     // one more: every node writes the next entry, kept or not
   size_t span_count = 0;
-  // The index and corner-number words claimed so far: blocks do not overlap, so these stay
+  // The words the leaves claimed so far (claimed_words): blocks do not overlap, so these stay
   // within the array, which bounds the checks' work by the file's size (leaves that all claim
   // one large block would otherwise make it quadratic). Compared before each batch is checked.
   uint64_t words_claimed = 0;
@@ -158,7 +178,8 @@ void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end,
     for (size_t s = 0; s < span_count; ++s) {
       if (s + kAhead < span_count) __builtin_prefetch(blocks + spans[s + kAhead].first);
       if (const char* problem = leaf_block_problem(blocks, block_words, spans[s].first,
-                                                   static_cast<uint32_t>(spans[s].count), tree.stats.triangles))
+                                                   static_cast<uint32_t>(spans[s].count), spans[s].grouped,
+                                                   tree.stats.triangles))
         throw Error(path, "damaged tree: the block of leaf " + std::to_string(spans[s].node) + " " + problem);
     }
     span_count = 0;
@@ -168,6 +189,8 @@ void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end,
     const KdNode node = nodes[index];
     const uint32_t leaf = static_cast<uint32_t>(kd_node_is_leaf(node));
     const uint64_t count = kd_leaf_count(node);  // of a leaf
+    const bool grouped = kd_leaf_grouped(node);   // of a leaf
+    const uint64_t claimed = claimed_words(count, grouped);
     const uint64_t far = kd_node_far_child(node);  // of an inner node
     const Pending resume = pending[top - 1];
     const bool finite_split = (node.payload & 0x7f800000u) != 0x7f800000u;
@@ -183,7 +206,7 @@ void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end,
     const uint32_t inner_valid = far_valid & ((below_empty & above_empty) ^ 1u) &
                                  static_cast<uint32_t>(depth < KD_MAX_TREE_DEPTH) & static_cast<uint32_t>(finite_split);
     // A leaf of no triangles is a whole empty tree's root; elsewhere its parent marks it.
-    const uint32_t leaf_valid = static_cast<uint32_t>(uint64_t{kd_leaf_first(node)} + 2 * count <= block_words) &
+    const uint32_t leaf_valid = static_cast<uint32_t>(uint64_t{kd_leaf_first(node)} + claimed <= block_words) &
                                 static_cast<uint32_t>(resume.node == index + 1) &
                                 static_cast<uint32_t>(count != 0 || index == 0);
     const uint32_t valid = (leaf_valid & leaf_mask) | (inner_valid & ~leaf_mask);
@@ -201,9 +224,9 @@ void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end,
       throw Error(path, "damaged tree: node " + std::to_string(resume.node) + " is out of place");
     }
     const uint64_t kept = uint64_t{leaf} & static_cast<uint64_t>(count != 0);
-    spans[span_count] = {index, kd_leaf_first(node), count};
+    spans[span_count] = {index, kd_leaf_first(node), count, grouped};
     span_count += kept;
-    words_claimed += (2 * count) & (0 - kept);
+    words_claimed += claimed & (0 - kept);
     if (span_count == kBatch) check_batch();
     // An inner node with two children leaves the far one pending; one with a single child goes on
     // into it, the next node; a leaf resumes at the nearest pending node.
@@ -289,13 +312,13 @@ uint64_t tree_key(uint64_t geometry_hash, const BuildSettings& settings) {
 
 namespace {
 
-// The tree of a mapped version 5 file, its arrays viewing the mapping, checked throughout.
+// The tree of a mapped version 6 file, its arrays viewing the mapping, checked throughout.
 KdTree tree_of(const MappedContainer& file, const std::string& path) {
   const uint32_t version = file.contents.header.version;
-  if (version < 5)
+  if (version < format::kTreeVersion)
     throw Error(path, "a version " + std::to_string(version) +
-                          " tree, which this build no longer reads (version 5 marks empty leaves in their parents "
-                          "instead of storing them as nodes): rebuild it with kdbuild");
+                          " tree, which this build no longer reads (version 6 leaves name their block's layout "
+                          "in their headers): rebuild it with kdbuild");
   KdTree tree;
   std::string parameters, statistics;
   float bounds[6] = {};

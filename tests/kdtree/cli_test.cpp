@@ -91,6 +91,26 @@ TEST_F(KdCli, KdbuildExactBuildsWithTheExactSweepEverywhere) {
   EXPECT_EQ(run("kdbuild", path("room.kdscene") + " " + path("t.kdtree") + " --bins 1").exit_code, 2);
 }
 
+// The leaf layout: a small scene's automatic one is grouped, either is taken by name and
+// recorded, the same tree in both (the same hits: kdtrace's hit files byte for byte).
+TEST_F(KdCli, KdbuildLeafLayoutIsChosenByNameOrBySize) {
+  const ToolRun automatic = run("kdbuild", path("room.kdscene") + " " + path("auto.kdtree") + " --json");
+  ASSERT_EQ(automatic.exit_code, 0) << automatic.err;
+  EXPECT_EQ(nlohmann::json::parse(automatic.out).at("build_settings").at("leaf_layout"), "grouped");
+  const ToolRun paged = run("kdbuild", path("room.kdscene") + " " + path("paged.kdtree") + " --leaf-layout paged --json");
+  ASSERT_EQ(paged.exit_code, 0) << paged.err;
+  EXPECT_EQ(nlohmann::json::parse(paged.out).at("build_settings").at("leaf_layout"), "paged");
+  EXPECT_EQ(read_tree(path("paged.kdtree")).settings.leaf_layout, LeafLayout::paged);
+  EXPECT_NE(run("kdinfo", path("paged.kdtree")).out.find("blocks     paged"), std::string::npos);
+  for (const char* tree : {"auto.kdtree", "paged.kdtree"}) {
+    const ToolRun trace = run("kdtrace", path("room.kdscene") + " " + path(tree) +
+                                             " --generate hard --count 20000 --quiet --hits " + path(tree) + ".hits");
+    ASSERT_EQ(trace.exit_code, 0) << trace.err;
+  }
+  EXPECT_EQ(slurp(path("auto.kdtree.hits")), slurp(path("paged.kdtree.hits")));
+  EXPECT_EQ(run("kdbuild", path("room.kdscene") + " " + path("t.kdtree") + " --leaf-layout loose").exit_code, 2);
+}
+
 TEST_F(KdCli, KdbuildRejectsBadUsageAndBadInput) {
   EXPECT_EQ(run("kdbuild", "").exit_code, 2);
   EXPECT_EQ(run("kdbuild", path("room.kdscene") + " " + path("t.kdtree") + " --empty-bonus 1.5").exit_code, 2);

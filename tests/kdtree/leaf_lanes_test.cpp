@@ -3,7 +3,8 @@
 // byte: on random, hard-case and camera rays (rays through vertices and along edges, where an
 // edge function is 0 and a lane is tested again in double), on closest-hit and any-hit
 // traversals, and on trees whose leaves hold from one to thousands of triangles (several pages
-// of corners, lengths that are not multiples of four).
+// of corners, lengths that are not multiples of four), in both leaf layouts, which give the
+// same hits.
 #include "test_scenes.h"
 
 #include <kdray/kdtree.h>
@@ -75,8 +76,19 @@ TEST(LeafLanes, GiveTheOneAtATimeHitsOnEveryLeafSize) {
                         Case{"coplanar grid", &grid, 0}, Case{"coplanar grid, depth 2", &grid, 2}}) {
     BuildSettings settings;
     settings.max_depth = c.max_depth;
-    const KdTree tree = build_kdtree(*c.scene, settings);
-    expect_same_hits(tree, test::ray_mix(*c.scene, tree, 8000, 41), c.name);
+    std::vector<HitRecord> hits_of_layout[2];
+    for (LeafLayout layout : {LeafLayout::paged, LeafLayout::grouped}) {
+      settings.leaf_layout = layout;
+      const KdTree tree = build_kdtree(*c.scene, settings);
+      const std::string name = std::string(c.name) + (layout == LeafLayout::paged ? ", paged" : ", grouped");
+      const std::vector<RayRecord> rays = test::ray_mix(*c.scene, tree, 8000, 41);
+      expect_same_hits(tree, rays, name);
+      trace_closest(tree, rays, hits_of_layout[layout == LeafLayout::grouped]);
+    }
+    ASSERT_EQ(hits_of_layout[0].size(), hits_of_layout[1].size());
+    EXPECT_EQ(0, std::memcmp(hits_of_layout[0].data(), hits_of_layout[1].data(),
+                             hits_of_layout[0].size() * sizeof(HitRecord)))
+        << c.name << ": the two layouts give different hits";
   }
 }
 

@@ -141,7 +141,7 @@ std::vector<uint32_t> leaf_triangle_indices(const KdTree& tree) {
   for (const KdNode& node : tree.nodes) {
     if (!kd_node_is_leaf(node)) continue;
     const uint32_t* block = tree.leaf_blocks.data() + kd_leaf_first(node);
-    indices.insert(indices.end(), block, block + kd_leaf_count(node));
+    for (uint32_t i = 0; i < kd_leaf_count(node); ++i) indices.push_back(kd_leaf_index(block, kd_leaf_grouped(node), i));
   }
   return indices;
 }

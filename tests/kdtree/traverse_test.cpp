@@ -215,7 +215,7 @@ KdNode inner_node(uint32_t axis, float split, uint32_t far_child) {
   return KdNode{bits, far_child << KD_CHILD_SHIFT | axis};
 }
 
-KdNode leaf_node(uint32_t first, uint32_t count) { return KdNode{first, count << 2 | KD_LEAF_TAG}; }
+KdNode leaf_node(uint32_t first, uint32_t count) { return kd_leaf_node(first, count, 0); }
 
 // Two copies of one triangle in the plane z = 0 (indices 0 and 1), in trees written by hand so
 // that the larger index is met first: the smaller one must win all the same.
@@ -225,23 +225,25 @@ TEST(KdTraverse, TiesInTGoToTheSmallerTriangleIndex) {
   corners.insert(corners.end(), triangle.begin(), triangle.end());
   const Scene scene = test::from_triangles(corners);
   const uint32_t larger_first[] = {1, 0};
-  KdTree one_leaf;
-  one_leaf.bounds = Bounds{{-1, -1, -1}, {1, 1, 1}};
-  TraversalArray<KdNode> nodes = {leaf_node(0, 2)};
-  one_leaf.leaf_blocks = leaf_blocks_of(scene, nodes, larger_first);
-  one_leaf.nodes = std::move(nodes);
-  // Split at x = 0: triangle 1 only below, triangle 0 only above. The ray meets the triangles
-  // on the split plane, so both leaves touch the hit; the below one comes first.
-  KdTree two_leaves = one_leaf;
-  nodes = {inner_node(0, 0.0f, 2), leaf_node(0, 1), leaf_node(1, 1)};
-  two_leaves.leaf_blocks = leaf_blocks_of(scene, nodes, larger_first);
-  two_leaves.nodes = std::move(nodes);
-  const RayRecord ray{-1, 0, -1, 1, 0, 1, 0, INFINITY};
-  for (const KdTree* tree : {&one_leaf, &two_leaves}) {
-    for (TraversalStack stack : {TraversalStack::Short, TraversalStack::Depth1, TraversalStack::Full}) {
-      const HitRecord hit = intersect_closest(*tree, ray, stack);
-      EXPECT_EQ(hit.triangle, 0u);
-      EXPECT_EQ(hit.t, 1.0f);
+  for (LeafLayout layout : {LeafLayout::paged, LeafLayout::grouped}) {
+    KdTree one_leaf;
+    one_leaf.bounds = Bounds{{-1, -1, -1}, {1, 1, 1}};
+    TraversalArray<KdNode> nodes = {leaf_node(0, 2)};
+    one_leaf.leaf_blocks = leaf_blocks_of(scene, nodes, larger_first, layout);
+    one_leaf.nodes = std::move(nodes);
+    // Split at x = 0: triangle 1 only below, triangle 0 only above. The ray meets the triangles
+    // on the split plane, so both leaves touch the hit; the below one comes first.
+    KdTree two_leaves = one_leaf;
+    nodes = {inner_node(0, 0.0f, 2), leaf_node(0, 1), leaf_node(1, 1)};
+    two_leaves.leaf_blocks = leaf_blocks_of(scene, nodes, larger_first, layout);
+    two_leaves.nodes = std::move(nodes);
+    const RayRecord ray{-1, 0, -1, 1, 0, 1, 0, INFINITY};
+    for (const KdTree* tree : {&one_leaf, &two_leaves}) {
+      for (TraversalStack stack : {TraversalStack::Short, TraversalStack::Depth1, TraversalStack::Full}) {
+        const HitRecord hit = intersect_closest(*tree, ray, stack);
+        EXPECT_EQ(hit.triangle, 0u);
+        EXPECT_EQ(hit.t, 1.0f);
+      }
     }
   }
 }
@@ -266,8 +268,10 @@ TEST(KdTraverse, DuplicatedTrianglesGiveTheSameHitsInEveryTree) {
   BuildSettings unclipped;
   unclipped.perfect_splits = false;
   unclipped.traversal_cost = 2.0f;
+  BuildSettings paged;
+  paged.leaf_layout = LeafLayout::paged;
   std::vector<HitRecord> reference;
-  for (const BuildSettings& settings : {BuildSettings{}, shallow, unclipped}) {
+  for (const BuildSettings& settings : {BuildSettings{}, shallow, unclipped, paged}) {
     const KdTree tree = build_kdtree(scene, settings);
     const std::vector<RayRecord> rays = random_rays(tree.bounds, 4000, 31);
     for (TraversalStack stack : {TraversalStack::Short, TraversalStack::Depth1}) {

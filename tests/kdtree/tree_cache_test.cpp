@@ -233,14 +233,15 @@ TEST_F(TreeCacheTest, EvictionRemovesTheLeastRecentlyUsedFirstButNeverTheKeptEnt
   EXPECT_EQ(trees.entries().size(), 2u);
 }
 
-// Trees before version 5 hold their leaves or their empty leaves in another form: they are refused
-// with the file and what to do, and a scene file of an earlier version is still read.
+// Trees before version 6 hold their leaves, their empty leaves or their leaf headers in another
+// form: they are refused with the file and what to do, and a scene file of an earlier version is
+// still read.
 TEST_F(TreeCacheTest, PreviousTreeVersionsAreRefusedWithARebuildMessage) {
   const std::string fixtures = std::string(KDRAY_SOURCE_DIR) + "/tests/kdtree/fixtures/";
   const Scene scene = read_scene(fixtures + "cornell-box-v2.kdscene");
   EXPECT_EQ(scene.geometry_hash, compute_geometry_hash(scene));
   for (const char* name : {"cornell-box-v1.kdtree", "cornell-box-v2.kdtree", "cornell-box-v3.kdtree",
-                           "cornell-box-v4.kdtree"}) {
+                           "cornell-box-v4.kdtree", "cornell-box-v5.kdtree"}) {
     try {
       read_tree(fixtures + name);
       ADD_FAILURE() << name << " was read";

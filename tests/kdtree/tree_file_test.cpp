@@ -57,7 +57,7 @@ TEST_F(KdTreeFile, RoundTripKeepsEverything) {
   write_tree(path("a.kdtree"), tree);
   const KdTree back = read_tree(path("a.kdtree"));
   EXPECT_EQ(back.geometry_hash, scene_.geometry_hash);
-  EXPECT_EQ(back.key, tree_key(scene_.geometry_hash, settings));
+  EXPECT_EQ(back.key, tree_key(scene_.geometry_hash, settings.resolved(scene_.triangle_count())));
   ASSERT_EQ(back.nodes.size(), tree.nodes.size());
   EXPECT_EQ(0, std::memcmp(back.nodes.data(), tree.nodes.data(), tree.nodes.size() * sizeof(KdNode)));
   EXPECT_TRUE(test::same_tree_bytes(back, tree));
@@ -65,6 +65,7 @@ TEST_F(KdTreeFile, RoundTripKeepsEverything) {
   EXPECT_EQ(back.settings.traversal_cost, 10.0f);
   EXPECT_EQ(back.settings.max_depth, 12u);
   EXPECT_FALSE(back.settings.perfect_splits);
+  EXPECT_EQ(back.settings.leaf_layout, LeafLayout::grouped) << "a small scene's automatic layout, recorded";
   EXPECT_EQ(back.stats.sah_cost, tree.stats.sah_cost);
   EXPECT_EQ(back.stats.leaves, tree.stats.leaves);
   EXPECT_EQ(back.bounds.max.y, tree.bounds.max.y);
@@ -75,31 +76,37 @@ TEST_F(KdTreeFile, RoundTripKeepsEverything) {
 // blocks cut at the pieces' edges: the file must be the one write_tree writes.
 TEST_F(KdTreeFile, BuiltStraightIntoItsFileIsTheFileWriteTreeWrites) {
   const Scene scene = test::icosphere_scene(6, {0, 0, 0}, 1);  // 81,920 triangles
-  BuildTimings timings;
-  const TreeSummary built =
-      build_tree_file(scene, path("straight.kdtree"), BuildSettings{}, BuildControl{2, {}, &timings});
-  const KdTree in_memory = build_kdtree(scene, BuildSettings{});
-  write_tree(path("written.kdtree"), in_memory);
-  ASSERT_GT(in_memory.leaf_blocks.size() * sizeof(uint32_t), uint64_t{2} << 20) << "blocks cut by a piece's end";
-  EXPECT_TRUE(bytes_of(path("straight.kdtree")) == bytes_of(path("written.kdtree")));
-  EXPECT_EQ(built.key, in_memory.key);
-  EXPECT_EQ(built.stats.leaf_references, test::leaf_triangle_indices(in_memory).size());
-  EXPECT_EQ(built.stats.sah_cost, in_memory.stats.sah_cost);
-  EXPECT_GT(timings.write, 0.0);
+  for (LeafLayout layout : {LeafLayout::grouped, LeafLayout::paged}) {
+    BuildSettings settings;
+    settings.leaf_layout = layout;
+    BuildTimings timings;
+    const TreeSummary built = build_tree_file(scene, path("straight.kdtree"), settings, BuildControl{2, {}, &timings});
+    const KdTree in_memory = build_kdtree(scene, settings);
+    write_tree(path("written.kdtree"), in_memory);
+    ASSERT_GT(in_memory.leaf_blocks.size() * sizeof(uint32_t), uint64_t{2} << 20) << "blocks cut by a piece's end";
+    EXPECT_TRUE(bytes_of(path("straight.kdtree")) == bytes_of(path("written.kdtree")));
+    EXPECT_EQ(built.key, in_memory.key);
+    EXPECT_EQ(built.stats.leaf_references, test::leaf_triangle_indices(in_memory).size());
+    EXPECT_EQ(built.stats.sah_cost, in_memory.stats.sah_cost);
+    EXPECT_GT(timings.write, 0.0);
+  }
 }
 
 // The blocks' bytes in any range, as a writer asks for them: inside one block, across the
-// boundary of two, and whole blocks with parts at either end; one leaf of two pages.
-TEST_F(KdTreeFile, LeafBlockBytesOfAnyRangeAreThoseOfTheWholeArray) {
+// boundary of two, and whole blocks with parts at either end; one paged leaf of two pages, and
+// grouped leaves whose last group is filled up.
+class LeafBlockBytes : public KdTreeFile, public ::testing::WithParamInterface<LeafLayout> {};
+
+TEST_P(LeafBlockBytes, OfAnyRangeAreThoseOfTheWholeArray) {
+  const LeafLayout layout = GetParam();
   ASSERT_GT(scene_.triangle_count(), 300u);
   std::vector<uint32_t> triangles;
   for (uint32_t t = 0; t < 300; ++t) triangles.push_back(t);
-  // A split on x at 0 (far child 2), then leaves of triangles [0, 20) and [20, 300).
-  TraversalArray<KdNode> nodes = {KdNode{0, 2u << KD_CHILD_SHIFT}, KdNode{0, 20u << 2 | KD_LEAF_TAG},
-                                  KdNode{20, 280u << 2 | KD_LEAF_TAG}};
+  // A split on x at 0 (far child 2), then leaves of triangles [0, 21) and [21, 300).
+  TraversalArray<KdNode> nodes = {KdNode{0, 2u << KD_CHILD_SHIFT}, kd_leaf_node(0, 21, 0), kd_leaf_node(21, 279, 0)};
   TraversalArray<KdNode> planned = nodes;
-  const TraversalArray<uint32_t> whole = leaf_blocks_of(scene_, nodes, triangles.data());
-  const detail::LeafBlockPlan plan = detail::plan_leaf_blocks(scene_, planned, triangles.data());
+  const TraversalArray<uint32_t> whole = leaf_blocks_of(scene_, nodes, triangles.data(), layout);
+  const detail::LeafBlockPlan plan = detail::plan_leaf_blocks(scene_, planned, triangles.data(), layout);
   EXPECT_EQ(0, std::memcmp(nodes.data(), planned.data(), nodes.size() * sizeof(KdNode)));
   ASSERT_EQ(plan.size_words(), whole.size());
   EXPECT_EQ(nodes[2].payload, plan.words[1]);
@@ -113,12 +120,34 @@ TEST_F(KdTreeFile, LeafBlockBytesOfAnyRangeAreThoseOfTheWholeArray) {
     EXPECT_EQ(0, std::memcmp(made.data(), bytes + begin, end - begin)) << begin << ".." << end;
     EXPECT_EQ(made.back(), 'x') << begin << ".." << end << ": nothing written past the range";
   }
-  // The second leaf's 280 triangles number their corners in two pages, the first padded to
-  // KD_LEAF_PAGE_CORNERS corners: its block is 2 x 280 words, then 1024 + N corners.
-  const uint64_t corner_words = whole.size() - plan.words[1] - 2 * 280;
+  for (const KdNode& leaf : {nodes[1], nodes[2]}) {
+    EXPECT_EQ(kd_leaf_grouped(leaf), layout == LeafLayout::grouped);
+    const uint32_t* block = whole.data() + kd_leaf_first(leaf);
+    for (uint32_t i = 0; i < kd_leaf_count(leaf); ++i)
+      EXPECT_EQ(kd_leaf_index(block, kd_leaf_grouped(leaf), i), triangles[(leaf.payload == 0 ? 0 : 21) + i]);
+  }
+  if (layout == LeafLayout::grouped) {
+    // 6 groups, the last of one triangle and three copies of it; 70 groups.
+    EXPECT_EQ(plan.words[1], 6u * KD_LEAF_GROUP_WORDS);
+    EXPECT_EQ(whole.size(), 76u * KD_LEAF_GROUP_WORDS);
+    const uint32_t* last = whole.data() + 5 * KD_LEAF_GROUP_WORDS;
+    EXPECT_EQ(last[1], last[0]);
+    EXPECT_EQ(last[3], last[0]);
+    const float* corners = reinterpret_cast<const float*>(last + 4);
+    const Vec3& b = scene_.positions[scene_.indices[3 * size_t{triangles[20]} + 1]];
+    EXPECT_EQ(corners[12 + 4 * 1 + 0], b.y) << "coordinate y of corner b, lane 0";
+    EXPECT_EQ(corners[12 + 4 * 1 + 2], b.y) << "a filled-up lane repeats it";
+    return;
+  }
+  // The second leaf's 279 triangles number their corners in two pages, the first padded to
+  // KD_LEAF_PAGE_CORNERS corners: its block is 2 x 279 words, then 1024 + N corners.
+  const uint64_t corner_words = whole.size() - plan.words[1] - 2 * 279;
   EXPECT_EQ(corner_words % 3, 0u);
   EXPECT_GT(corner_words / 3, uint64_t{KD_LEAF_PAGE_CORNERS});
 }
+
+INSTANTIATE_TEST_SUITE_P(Layouts, LeafBlockBytes, ::testing::Values(LeafLayout::paged, LeafLayout::grouped),
+                         [](const auto& info) { return info.param == LeafLayout::paged ? "Paged" : "Grouped"; });
 
 TEST_F(KdTreeFile, BinningIsRecordedAndAnExactTreeKeepsItsKey) {
   BuildSettings binned, exact;
@@ -133,10 +162,14 @@ TEST_F(KdTreeFile, BinningIsRecordedAndAnExactTreeKeepsItsKey) {
   EXPECT_EQ(binned_back.key, tree_key(scene_.geometry_hash, binned.resolved(scene_.triangle_count())));
   EXPECT_EQ(read_tree(path("exact.kdtree")).settings.binned_above, 0u);
   EXPECT_NE(tree_key(1, binned), tree_key(1, exact));
-  // The exact sweep's section 3 holds the five fields trees had before binning, so its key
-  // changes with the format version only (version 2 gave 0x4237eda0fa487d3c, version 3
-  // 0xb7c5220bd88d19c5, version 4 0xbefeff730f16f7ce).
-  EXPECT_EQ(tree_key(0x0123456789abcdefull, exact), 0xc1c8e505256988a8ull);
+  // The key of a fixed geometry and settings, so that a change to the encoding or the key shows
+  // (version 2 gave 0x4237eda0fa487d3c, version 3 0xb7c5220bd88d19c5, version 4
+  // 0xbefeff730f16f7ce, version 5 0xc1c8e505256988a8, all before the leaf layout was recorded).
+  exact.leaf_layout = LeafLayout::paged;
+  EXPECT_EQ(tree_key(0x0123456789abcdefull, exact), 0x9c60b6fac1c79659ull);
+  BuildSettings grouped = exact;
+  grouped.leaf_layout = LeafLayout::grouped;
+  EXPECT_NE(tree_key(1, grouped), tree_key(1, exact));
 }
 
 // A read tree views its file's pages: a writer replacing the file (by rename, as every writer
@@ -252,10 +285,13 @@ TEST_F(KdTreeFile, InvalidStructureIsRejected) {
 // Every block is checked, wherever it lies in the array: a triangle index beyond the scene's and
 // the top bits of a corner-number word in the first leaf, one in the middle and the last, and a
 // corner numbered beyond the array in the last (a traversal reads nothing else, so a number
-// that stays inside the array is the checksum's to catch).
+// that stays inside the array is the checksum's to catch). A grouped block: its last triangle's
+// index, in the last group.
 TEST_F(KdTreeFile, EveryLeafBlockIsChecked) {
   const Scene scene = test::icosphere_scene(5, {0, 0, 0}, 1);
-  const KdTree intact = build_kdtree(scene, BuildSettings{});
+  BuildSettings paged;
+  paged.leaf_layout = LeafLayout::paged;
+  const KdTree intact = build_kdtree(scene, paged);
   std::vector<KdNode> leaves;
   for (const KdNode& node : intact.nodes)
     if (kd_node_is_leaf(node) && kd_leaf_count(node) > 0) leaves.push_back(node);
@@ -274,6 +310,19 @@ TEST_F(KdTreeFile, EveryLeafBlockIsChecked) {
     if (first == kd_leaf_first(leaves.back()))
       expect_found(first + count, KD_LEAF_CORNER_MASK << (2 * KD_LEAF_CORNER_BITS), "corner beyond");
   }
+  const KdTree grouped = build_kdtree(scene, BuildSettings{});
+  leaves.clear();
+  for (const KdNode& node : grouped.nodes)
+    if (kd_node_is_leaf(node) && kd_leaf_count(node) > 0) leaves.push_back(node);
+  for (const KdNode& leaf : {leaves.front(), leaves[leaves.size() / 2], leaves.back()}) {
+    ASSERT_TRUE(kd_leaf_grouped(leaf));
+    const uint32_t last = kd_leaf_count(leaf) - 1;
+    KdTree tree = grouped;
+    tree.leaf_blocks.own()[kd_leaf_first(leaf) + KD_LEAF_GROUP_WORDS * (last / 4) + last % 4] =
+        static_cast<uint32_t>(scene.triangle_count());
+    write_tree(path("bad.kdtree"), tree);
+    EXPECT_NE(read_error(path("bad.kdtree")).find("triangle index"), std::string::npos) << read_error(path("bad.kdtree"));
+  }
 }
 
 // Leaves that all claim the same large block: their checks would cost the block's size each, so
@@ -284,7 +333,7 @@ TEST_F(KdTreeFile, LeavesClaimingOneBlockAreRejected) {
   ASSERT_GT(tree.leaf_blocks.size(), 2 * count + 3);
   ASSERT_GT(tree.stats.leaves * 2 * count, tree.leaf_blocks.size());
   for (KdNode& node : tree.nodes.own())
-    if (kd_node_is_leaf(node)) node = KdNode{0, count << 2 | KD_LEAF_TAG};
+    if (kd_node_is_leaf(node)) node = kd_leaf_node(0, count, 0);
   TraversalArray<uint32_t>& words = tree.leaf_blocks.own();
   for (uint32_t i = 0; i < count; ++i) words[i] = 0, words[count + i] = 0;
   write_tree(path("claims.kdtree"), tree);
@@ -316,7 +365,7 @@ KdNode add_one_triangle_leaf(KdTree& tree) {
     std::memcpy(&bits, &corner, sizeof bits);
     words.push_back(bits);
   }
-  return KdNode{first, 1u << 2 | KD_LEAF_TAG};
+  return kd_leaf_node(first, 1, 0);
 }
 
 // A tree of about 1.6 million nodes, large enough that a reader checks its subtrees in parallel
@@ -327,6 +376,7 @@ KdTree large_tree() {
   constexpr uint32_t kLevels = 15, kChain = 48;
   KdTree tree;
   tree.stats.triangles = 1;
+  tree.settings.leaf_layout = LeafLayout::paged;  // add_one_triangle_leaf's blocks
   struct Builder {
     KdTree& tree;
     void add(uint32_t depth) {
@@ -382,6 +432,7 @@ TEST_F(KdTreeFile, TreeDeeperThanTheFullStackIsRejected) {
   // A chain of 70 inner nodes, each with an empty above child, then a leaf: depth 70.
   KdTree tree;
   tree.stats.triangles = 1;
+  tree.settings.leaf_layout = LeafLayout::paged;  // add_one_triangle_leaf's blocks
   for (uint32_t level = 0; level < 70; ++level) tree.nodes.own().push_back(KdNode{0, KD_ABOVE_EMPTY});
   tree.nodes.own().push_back(add_one_triangle_leaf(tree));
   write_tree(path("deep.kdtree"), tree);

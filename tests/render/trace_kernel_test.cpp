@@ -112,6 +112,28 @@ TEST_F(TraceKernel, ShortStackOfOneGivesTheSameHits) {
   EXPECT_EQ(count_differences(cpu, trace_rays_opencl(*tree_, rays, depth_one)), 0u);
 }
 
+// A tree's leaves grouped (the fandisk's by default) or paged: the device reads either, in lanes
+// and one ray per work-item, with the CPU's hits, and both layouts give the same hits.
+TEST_F(TraceKernel, BothLeafLayoutsGiveTheCpuHits) {
+  BuildSettings paged_settings;
+  paged_settings.leaf_layout = LeafLayout::paged;
+  const KdTree paged = build_kdtree(*scene_, paged_settings);
+  ASSERT_EQ(tree_->settings.leaf_layout, LeafLayout::grouped);
+  std::vector<RayRecord> rays = random_rays(tree_->bounds, 30000, 41);
+  std::vector<RayRecord> hard = hard_case_rays(*scene_, *tree_, 30000, 42);
+  rays.insert(rays.end(), hard.begin(), hard.end());
+  std::vector<HitRecord> grouped_cpu, paged_cpu;
+  trace_closest(*tree_, rays, grouped_cpu);
+  trace_closest(paged, rays, paged_cpu);
+  EXPECT_EQ(count_differences(grouped_cpu, paged_cpu), 0u) << "grouped against paged, on the CPU";
+  DeviceSelection one_ray;
+  one_ray.lanes = false;
+  for (const DeviceSelection& selection : {DeviceSelection{}, one_ray}) {
+    EXPECT_EQ(count_differences(paged_cpu, trace_rays_opencl(paged, rays, selection)), 0u) << "paged";
+    EXPECT_EQ(count_differences(paged_cpu, trace_rays_opencl(*tree_, rays, selection)), 0u) << "grouped";
+  }
+}
+
 // A device compiles its own traversal unless one is named: the robust code alone on a GPU, where
 // it traced faster, the fast path on a CPU; the program's options and its reported path agree.
 // On a CPU device a tree of more than kLanesMinNodes nodes is traced 24 rays per work-item in

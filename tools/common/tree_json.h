@@ -8,6 +8,16 @@
 
 namespace kdray::tool {
 
+// The names of the leaf layouts, as kdbuild's --leaf-layout takes them and the JSON reports them.
+inline const char* leaf_layout_name(LeafLayout layout) {
+  switch (layout) {
+    case LeafLayout::grouped: return "grouped";
+    case LeafLayout::paged: return "paged";
+    case LeafLayout::automatic: break;
+  }
+  return "auto";
+}
+
 inline nlohmann::json tree_stats_json(const TreeSummary& tree) {
   const BuildSettings& settings = tree.settings;
   const TreeStats& stats = tree.stats;
@@ -20,7 +30,8 @@ inline nlohmann::json tree_stats_json(const TreeSummary& tree) {
         {"depth_limit", settings.max_depth != 0 ? nlohmann::json(settings.max_depth) : nlohmann::json(nullptr)},
         {"perfect_splits", settings.perfect_splits},
         {"binned_above", settings.binned_above},  // 0: the exact sweep everywhere
-        {"bins", settings.bins}}},
+        {"bins", settings.bins},
+        {"leaf_layout", leaf_layout_name(settings.leaf_layout)}}},
       {"triangles", stats.triangles},
       {"sah_cost", stats.sah_cost},
       {"nodes", stats.inner_nodes + stats.leaves},

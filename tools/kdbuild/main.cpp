@@ -12,6 +12,7 @@
 #include "tool_main.h"
 
 #include <cstdio>
+#include <map>
 #include <string>
 
 namespace {
@@ -58,6 +59,15 @@ int main(int argc, char** argv) {
                  "Nodes of more triangles choose their split among binned planes, smaller ones by the exact sweep; "
                  "0: exact everywhere")
       ->capture_default_str()->excludes(exact_flag)->group("Tree");
+  const std::map<std::string, kdray::LeafLayout> layouts = {{"auto", kdray::LeafLayout::automatic},
+                                                            {"grouped", kdray::LeafLayout::grouped},
+                                                            {"paged", kdray::LeafLayout::paged}};
+  std::string layout_name = "auto";
+  app.add_option("--leaf-layout", layout_name,
+                 "Leaf blocks: grouped (four triangles' corners by axis, read in one load each; about twice the "
+                 "bytes), paged (each distinct corner once), or auto (grouped up to " +
+                     std::to_string(BuildSettings::kGroupedLeavesUpTo) + " triangles)")
+      ->check(CLI::IsMember({"auto", "grouped", "paged"}))->capture_default_str()->group("Tree");
   app.add_option("--bins", settings.bins, "Bins per axis of the binned nodes")
       ->capture_default_str()->check(CLI::Range(2u, BuildSettings::kMaxBins))->group("Tree");
   auto* cache_option = app.add_option("--cache", cache_folder,
@@ -76,6 +86,7 @@ int main(int argc, char** argv) {
 
   return kdray::tool::run(app, argc, argv, [&] {
     settings.perfect_splits = !no_perfect_splits;
+    settings.leaf_layout = layouts.at(layout_name);
     if (exact) settings.binned_above = 0;
     kdbuild::Report report;
     report.scene_path = scene_path;

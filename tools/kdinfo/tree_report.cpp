@@ -38,6 +38,7 @@ std::string tree_text(const json& j) {
   else
     text += format("splits     %u bins per axis above %u triangles, exact sweep below\n", s["bins"].get<unsigned>(),
                    s["binned_above"].get<unsigned>());
+  text += format("blocks     %s\n", s["leaf_layout"].get<std::string>().c_str());
   text += format("SAH cost   %.4g\n", j["sah_cost"].get<double>());
   text += format("nodes      %llu inner, %llu leaves (%llu empty)\n", j["inner_nodes"].get<unsigned long long>(),
                  j["leaves"].get<unsigned long long>(), j["empty_leaves"].get<unsigned long long>());

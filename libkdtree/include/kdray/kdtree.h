@@ -17,6 +17,13 @@ namespace kdray {
 
 // Everything that decides the shape of the tree; recorded in the .kdtree file. The names and
 // defaults are those of the SAH k-d tree literature (formats/kdtree.md).
+// How a leaf's block lays out its triangles (kernels/kd_types.h): grouped, four triangles'
+// corners by axis (one load a coordinate of four, about twice the bytes), or paged (each
+// distinct corner once, numbered). Automatic: grouped for scenes of up to
+// BuildSettings::kGroupedLeavesUpTo triangles, paged above, where a tree twice the size costs
+// more in cache misses, loading and writing than the loads save (bench/LOG.md).
+enum class LeafLayout : uint8_t { automatic = 0, grouped = 1, paged = 2 };
+
 struct BuildSettings {
   static constexpr float kDefaultTraversalCost = 15.0f;     // K_T
   static constexpr float kDefaultIntersectionCost = 20.0f;  // K_I
@@ -26,6 +33,7 @@ struct BuildSettings {
   static constexpr uint32_t kDefaultBinnedAbove = 32768;  // nodes of more triangles are binned
   static constexpr uint32_t kDefaultBins = 256;           // per axis
   static constexpr uint32_t kMaxBins = 1u << 16;
+  static constexpr uint64_t kGroupedLeavesUpTo = uint64_t{1} << 18;  // LeafLayout::automatic
 
   float traversal_cost = kDefaultTraversalCost;
   float intersection_cost = kDefaultIntersectionCost;
@@ -40,9 +48,10 @@ struct BuildSettings {
   // everywhere (kdbuild --exact).
   uint32_t binned_above = kDefaultBinnedAbove;
   uint32_t bins = kDefaultBins;
+  LeafLayout leaf_layout = LeafLayout::automatic;
 
-  // These settings with the automatic depth limit made explicit for a scene of `triangles`
-  // triangles: what the tree built from them records, and what its key names.
+  // These settings with the automatic depth limit and leaf layout made explicit for a scene of
+  // `triangles` triangles: what the tree built from them records, and what its key names.
   BuildSettings resolved(uint64_t triangles) const;
 };
 
@@ -117,9 +126,11 @@ TreeSummary build_tree_file(const Scene& scene, const std::string& path, const B
 
 // The leaf-block array (kernels/kd_types.h) of the leaves of `nodes`, whose payloads are their
 // first entries of `triangles`, an array of the scene's triangle indices that the leaves are
-// ranges of (the builder's); sets each leaf's payload to its block's first word. Throws
-// kdray::Error when the array would outgrow the 32-bit payloads.
-TraversalArray<uint32_t> leaf_blocks_of(const Scene& scene, TraversalArray<KdNode>& nodes, const uint32_t* triangles);
+// ranges of (the builder's), in `layout` (grouped or paged); sets each leaf's payload to its
+// block's first word and its header's layout bit. Throws kdray::Error when the array would
+// outgrow the 32-bit payloads.
+TraversalArray<uint32_t> leaf_blocks_of(const Scene& scene, TraversalArray<KdNode>& nodes, const uint32_t* triangles,
+                                        LeafLayout layout);
 
 // Statistics of a tree, from its nodes (its leaf blocks need not be there).
 TreeStats compute_tree_stats(const KdTree& tree, uint64_t scene_triangles);

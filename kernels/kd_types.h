@@ -82,15 +82,15 @@ KD_INLINE KdNode kd_leaf_node(kd_u32 first_word, kd_u32 count, int grouped) {
  * order picks, where the paged layout takes four loads and three shuffles after decoding the
  * corner numbers; each triangle has its corners in full, about twice the paged bytes. */
 #define KD_LEAF_GROUP_WORDS 40u
+#define KD_LEAF_CORNER_BITS 10u
+#define KD_LEAF_CORNER_MASK ((1u << KD_LEAF_CORNER_BITS) - 1u)
+#define KD_LEAF_PAGE_TRIANGLES 256u
+#define KD_LEAF_PAGE_CORNERS 1024u
 
 /* The scene index of triangle i of a leaf whose block starts at `block`, in either layout. */
 KD_INLINE kd_u32 kd_leaf_index(KD_GLOBAL const kd_u32* block, int grouped, kd_u32 i) {
   return grouped ? block[KD_LEAF_GROUP_WORDS * (i / 4u) + i % 4u] : block[i];
 }
-#define KD_LEAF_CORNER_BITS 10u
-#define KD_LEAF_CORNER_MASK ((1u << KD_LEAF_CORNER_BITS) - 1u)
-#define KD_LEAF_PAGE_TRIANGLES 256u
-#define KD_LEAF_PAGE_CORNERS 1024u
 
 /* One record of a ray file (formats/rays.md): little-endian float32, 32 bytes. */
 typedef struct RayRecord {

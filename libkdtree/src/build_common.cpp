@@ -356,7 +356,8 @@ KdTree describe_tree(const Scene& scene, const BuildSettings& settings, const Bo
 }
 
 KdTree finish_tree(const Scene& scene, const BuildSettings& settings, const Box3& voxel, Subtree&& built) {
-  TraversalArray<uint32_t> blocks = leaf_blocks_of(scene, built.nodes, built.leaf_triangles.data(), settings.leaf_layout);
+  TraversalArray<uint32_t> blocks =
+      leaf_blocks_of(scene, built.nodes, built.leaf_triangles.data(), settings.leaf_layout);
   KdTree tree = describe_tree(scene, settings, voxel, std::move(built.nodes));
   tree.leaf_blocks = std::move(blocks);
   return tree;

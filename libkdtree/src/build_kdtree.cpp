@@ -100,7 +100,8 @@ TreeSummary build_tree_file(const Scene& scene, const std::string& path, const B
   TreeSummary summary;
   run_with_threads(control.threads, [&] {
     const uint32_t* triangles = built.subtree.leaf_triangles.data();
-    const detail::LeafBlockPlan plan = detail::plan_leaf_blocks(scene, built.subtree.nodes, triangles, built.settings.leaf_layout);
+    const detail::LeafBlockPlan plan =
+        detail::plan_leaf_blocks(scene, built.subtree.nodes, triangles, built.settings.leaf_layout);
     const KdTree described =
         detail::describe_tree(scene, built.settings, built.voxel, std::move(built.subtree.nodes));
     const auto described_at = Clock::now();

@@ -80,7 +80,9 @@ uint64_t block_words(const Scene& scene, const uint32_t* triangles, uint32_t cou
 }
 
 // The size in words of a grouped block of `count` triangles.
-uint64_t grouped_block_words(uint32_t count) { return uint64_t{KD_LEAF_GROUP_WORDS} * ((uint64_t{count} + 3) / 4); }
+uint64_t grouped_block_words(uint32_t count) {
+  return uint64_t{KD_LEAF_GROUP_WORDS} * ((uint64_t{count} + 3) / 4);
+}
 
 // The grouped block of the leaf of `count` triangles `triangles[0, count)` to out; the last
 // group is filled up with its first triangle.
@@ -136,8 +138,9 @@ LeafBlockPlan plan_leaf_blocks(const Scene& scene, TraversalArray<KdNode>& nodes
   tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves, 1024), [&](const tbb::blocked_range<size_t>& range) {
     PageCorners corners;
     for (size_t leaf = range.begin(); leaf < range.end(); ++leaf)
-      plan.words[leaf + 1] = plan.grouped ? grouped_block_words(plan.counts[leaf])
-                                          : block_words(scene, triangles + plan.entries[leaf], plan.counts[leaf], corners);
+      plan.words[leaf + 1] = plan.grouped
+                                 ? grouped_block_words(plan.counts[leaf])
+                                 : block_words(scene, triangles + plan.entries[leaf], plan.counts[leaf], corners);
   });
   for (size_t leaf = 0; leaf < leaves; ++leaf) plan.words[leaf + 1] += plan.words[leaf];
   if (plan.size_words() > UINT32_MAX)

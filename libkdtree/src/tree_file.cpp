@@ -162,7 +162,7 @@ void validate_subtree_serially(const KdTree& tree, uint64_t begin, uint64_t end,
   uint32_t top = 1;  // entries in `pending`
   const uint32_t* blocks = tree.leaf_blocks.data();
   const uint64_t block_words = tree.leaf_blocks.size();
-  constexpr size_t kBatch = 512;  // leaves whose blocks are checked together; 12 KiB, in L1
+  constexpr size_t kBatch = 512;  // leaves whose blocks are checked together; 16 KiB, in L1
   LeafSpan spans[kBatch + 1];     // one more: every node writes the next entry, kept or not
   size_t span_count = 0;
   // The words the leaves claimed so far (claimed_words): blocks do not overlap, so these stay

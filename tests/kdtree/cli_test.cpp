@@ -97,7 +97,8 @@ TEST_F(KdCli, KdbuildLeafLayoutIsChosenByNameOrBySize) {
   const ToolRun automatic = run("kdbuild", path("room.kdscene") + " " + path("auto.kdtree") + " --json");
   ASSERT_EQ(automatic.exit_code, 0) << automatic.err;
   EXPECT_EQ(nlohmann::json::parse(automatic.out).at("build_settings").at("leaf_layout"), "grouped");
-  const ToolRun paged = run("kdbuild", path("room.kdscene") + " " + path("paged.kdtree") + " --leaf-layout paged --json");
+  const ToolRun paged =
+      run("kdbuild", path("room.kdscene") + " " + path("paged.kdtree") + " --leaf-layout paged --json");
   ASSERT_EQ(paged.exit_code, 0) << paged.err;
   EXPECT_EQ(nlohmann::json::parse(paged.out).at("build_settings").at("leaf_layout"), "paged");
   EXPECT_EQ(read_tree(path("paged.kdtree")).settings.leaf_layout, LeafLayout::paged);

@@ -321,7 +321,8 @@ TEST_F(KdTreeFile, EveryLeafBlockIsChecked) {
     tree.leaf_blocks.own()[kd_leaf_first(leaf) + KD_LEAF_GROUP_WORDS * (last / 4) + last % 4] =
         static_cast<uint32_t>(scene.triangle_count());
     write_tree(path("bad.kdtree"), tree);
-    EXPECT_NE(read_error(path("bad.kdtree")).find("triangle index"), std::string::npos) << read_error(path("bad.kdtree"));
+    const std::string error = read_error(path("bad.kdtree"));
+    EXPECT_NE(error.find("triangle index"), std::string::npos) << error;
   }
 }
 

@@ -72,10 +72,11 @@ enum SceneFlags : uint64_t {
 constexpr char kTreeMagic[8] = {'K', 'D', 'T', 'R', 'E', 'E', '\0', '\0'};
 // Version 6 lets a leaf's header name its block's layout, paged or grouped (four triangles'
 // corners by axis), and records the layout in the build settings. Version 5 stores no node for
-// an empty leaf: its parent's header marks that child empty. Version 4 stores each leaf as one block of its triangles' indices, corner numbers and distinct corners
-// (kTreeLeafBlocks); version 3 stored each leaf triangle's corners with its index
-// (kTreeLeafTriangles); version 2 keyed a tree by its scene's geometry hash and build settings
-// (kTreeKey), version 1 by the scene's content hash. Readers refuse versions 1 to 5 ("rebuild").
+// an empty leaf: its parent's header marks that child empty. Version 4 stores each leaf as one
+// block of its triangles' indices, corner numbers and distinct corners (kTreeLeafBlocks);
+// version 3 stored each leaf triangle's corners with its index (kTreeLeafTriangles); version 2
+// keyed a tree by its scene's geometry hash and build settings (kTreeKey), version 1 by the
+// scene's content hash. Readers refuse versions 1 to 5 ("rebuild").
 constexpr uint32_t kTreeVersion = 6;
 
 enum TreeSection : uint32_t {

@@ -15,15 +15,16 @@
 
 namespace kdray {
 
-// Everything that decides the shape of the tree; recorded in the .kdtree file. The names and
-// defaults are those of the SAH k-d tree literature (formats/kdtree.md).
 // How a leaf's block lays out its triangles (kernels/kd_types.h): grouped, four triangles'
 // corners by axis (one load a coordinate of four, about twice the bytes), or paged (each
 // distinct corner once, numbered). Automatic: grouped for scenes of up to
 // BuildSettings::kGroupedLeavesUpTo triangles, paged above, where a tree twice the size costs
-// more in cache misses, loading and writing than the loads save (bench/LOG.md).
+// every load, cache and build its bytes for gains within the noise (bench/LOG.md, "`.kdtree`
+// version 6").
 enum class LeafLayout : uint8_t { automatic = 0, grouped = 1, paged = 2 };
 
+// Everything that decides the shape of the tree; recorded in the .kdtree file. The names and
+// defaults are those of the SAH k-d tree literature (formats/kdtree.md).
 struct BuildSettings {
   static constexpr float kDefaultTraversalCost = 15.0f;     // K_T
   static constexpr float kDefaultIntersectionCost = 20.0f;  // K_I

@@ -79,11 +79,6 @@ uint64_t block_words(const Scene& scene, const uint32_t* triangles, uint32_t cou
   return 2 * uint64_t{count} + 3 * (uint64_t{KD_LEAF_PAGE_CORNERS} * last_page + corners.vertices.size());
 }
 
-// The size in words of a grouped block of `count` triangles.
-uint64_t grouped_block_words(uint32_t count) {
-  return uint64_t{KD_LEAF_GROUP_WORDS} * ((uint64_t{count} + 3) / 4);
-}
-
 // The grouped block of the leaf of `count` triangles `triangles[0, count)` to out; the last
 // group is filled up with its first triangle.
 void make_grouped_block(const Scene& scene, const uint32_t* triangles, uint32_t count, char* out) {
@@ -122,6 +117,8 @@ void make_block(const Scene& scene, const uint32_t* triangles, uint32_t count, u
 }
 
 }  // namespace
+
+uint64_t grouped_block_words(uint64_t count) { return KD_LEAF_GROUP_WORDS * ((count + 3) / 4); }
 
 LeafBlockPlan plan_leaf_blocks(const Scene& scene, TraversalArray<KdNode>& nodes, const uint32_t* triangles,
                                LeafLayout layout) {

@@ -20,6 +20,9 @@ struct LeafBlockPlan {
   uint64_t size_words() const { return words.back(); }
 };
 
+// The size in words of a grouped block of `count` triangles (kernels/kd_types.h).
+uint64_t grouped_block_words(uint64_t count);
+
 // Plans the blocks of the leaves of `nodes`, whose payloads are still their first entries of
 // `triangles` (the builder's array of scene triangle indices), in `layout` (grouped or paged),
 // and sets each leaf's payload to its block's first word (an empty leaf's to where the next

@@ -97,7 +97,7 @@ BuildSettings decode_settings(const std::string& bytes, const std::string& path)
 // The words a leaf of `count` triangles claims at its block's start: a paged block's indices and
 // corner numbers (its corners follow, checked by leaf_block_problem), a grouped block's groups.
 uint64_t claimed_words(uint64_t count, bool grouped) {
-  return grouped ? KD_LEAF_GROUP_WORDS * ((count + 3) / 4) : 2 * count;
+  return grouped ? detail::grouped_block_words(count) : 2 * count;
 }
 
 // What is wrong with the block of a leaf of `count` (> 0) triangles at word `first` of the

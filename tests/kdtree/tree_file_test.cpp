@@ -127,7 +127,8 @@ TEST_P(LeafBlockBytes, OfAnyRangeAreThoseOfTheWholeArray) {
       EXPECT_EQ(kd_leaf_index(block, kd_leaf_grouped(leaf), i), triangles[(leaf.payload == 0 ? 0 : 21) + i]);
   }
   if (layout == LeafLayout::grouped) {
-    // 6 groups, the last of one triangle and three copies of it; 70 groups.
+    // The first leaf's 21 triangles in 6 groups, the last of one triangle and three copies of it;
+    // the second leaf's 279 in 70.
     EXPECT_EQ(plan.words[1], 6u * KD_LEAF_GROUP_WORDS);
     EXPECT_EQ(whole.size(), 76u * KD_LEAF_GROUP_WORDS);
     const uint32_t* last = whole.data() + 5 * KD_LEAF_GROUP_WORDS;

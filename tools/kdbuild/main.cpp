@@ -10,10 +10,11 @@
 #include "process_stats.h"
 #include "progress.h"
 #include "tool_main.h"
+#include "tree_json.h"
 
 #include <cstdio>
-#include <map>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -59,15 +60,17 @@ int main(int argc, char** argv) {
                  "Nodes of more triangles choose their split among binned planes, smaller ones by the exact sweep; "
                  "0: exact everywhere")
       ->capture_default_str()->excludes(exact_flag)->group("Tree");
-  const std::map<std::string, kdray::LeafLayout> layouts = {{"auto", kdray::LeafLayout::automatic},
-                                                            {"grouped", kdray::LeafLayout::grouped},
-                                                            {"paged", kdray::LeafLayout::paged}};
-  std::string layout_name = "auto";
+  // The names are the JSON report's (tree_json.h), so one list serves the option and the report.
+  const kdray::LeafLayout layouts[] = {kdray::LeafLayout::automatic, kdray::LeafLayout::grouped,
+                                       kdray::LeafLayout::paged};
+  std::vector<std::string> layout_names;
+  for (kdray::LeafLayout layout : layouts) layout_names.push_back(kdray::tool::leaf_layout_name(layout));
+  std::string layout_name = layout_names[0];
   app.add_option("--leaf-layout", layout_name,
                  "Leaf blocks: grouped (four triangles' corners by axis, read in one load each; about twice the "
                  "bytes), paged (each distinct corner once), or auto (grouped up to " +
                      std::to_string(BuildSettings::kGroupedLeavesUpTo) + " triangles)")
-      ->check(CLI::IsMember({"auto", "grouped", "paged"}))->capture_default_str()->group("Tree");
+      ->check(CLI::IsMember(layout_names))->capture_default_str()->group("Tree");
   app.add_option("--bins", settings.bins, "Bins per axis of the binned nodes")
       ->capture_default_str()->check(CLI::Range(2u, BuildSettings::kMaxBins))->group("Tree");
   auto* cache_option = app.add_option("--cache", cache_folder,
@@ -86,7 +89,8 @@ int main(int argc, char** argv) {
 
   return kdray::tool::run(app, argc, argv, [&] {
     settings.perfect_splits = !no_perfect_splits;
-    settings.leaf_layout = layouts.at(layout_name);
+    for (kdray::LeafLayout layout : layouts)
+      if (layout_name == kdray::tool::leaf_layout_name(layout)) settings.leaf_layout = layout;
     if (exact) settings.binned_above = 0;
     kdbuild::Report report;
     report.scene_path = scene_path;

@@ -3,6 +3,8 @@
 // variants.
 #include "traversal_variant.h"
 
+#include <kdray/traverse.h>
+
 #include <kernels/kd_compat.h>
 #include <kernels/kd_geometry.h>
 #include <kernels/kd_types.h>

@@ -2,6 +2,8 @@
 // compiled here for AVX2 alone and chosen at run time (closest_in_lanes_supported).
 #include "traversal_variant.h"
 
+#include <kdray/traverse.h>
+
 #include <kernels/kd_compat.h>
 #include <kernels/kd_geometry.h>
 #include <kernels/kd_types.h>

@@ -8,14 +8,13 @@
 #include <cstddef>
 #include <cstdint>
 
+namespace kdray {
+struct TraversalArrays;  // kdray/traverse.h, which the files that read one include
+}  // namespace kdray
+
 namespace kdray::detail {
 
-// The arrays a traversal reads, as plain pointers (the CPU side of KdSceneView).
-struct TraversalArrays {
-  const KdNode* nodes;
-  const uint32_t* leaf_blocks;
-  float bounds_min[3], bounds_max[3];
-};
+using kdray::TraversalArrays;
 
 // The KdSceneView of one compilation of kd_traverse.h: each lives in its own namespace, so the
 // caller passes that namespace's kd_scene_view.
@@ -41,6 +40,11 @@ const TraversalVariant& traversal_robust_short_stack();
 // 16 rays at a time in AVX2 lanes (traversal_lanes.cpp): only where closest_in_lanes_supported().
 bool closest_in_lanes_supported();
 void closest_in_lanes(const TraversalArrays& arrays, const RayRecord* rays, HitRecord* hits, size_t count);
+
+// traversal_short_stack()'s closest and any, kPacketRays consecutive rays at a time as one packet
+// (traversal_packets.cpp): only where closest_in_lanes_supported() (AVX2).
+void closest_in_packets(const TraversalArrays& arrays, const RayRecord* rays, HitRecord* hits, size_t count);
+void any_in_packets(const TraversalArrays& arrays, const RayRecord* rays, uint8_t* occluded, size_t count);
 
 // Closest hits with the short stack, like traversal_short_stack().closest, adding the work
 // done (kernels/kd_scene_view.h's counters): a build of its own, so the timed ones count nothing.

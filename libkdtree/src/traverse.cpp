@@ -16,19 +16,6 @@
 namespace kdray {
 namespace {
 
-detail::TraversalArrays arrays_of(const KdTree& tree) {
-  detail::TraversalArrays arrays{};
-  arrays.nodes = tree.nodes.data();
-  arrays.leaf_blocks = tree.leaf_blocks.data();
-  const float* lo = &tree.bounds.min.x;
-  const float* hi = &tree.bounds.max.x;
-  for (int k = 0; k < 3; ++k) {
-    arrays.bounds_min[k] = lo[k];
-    arrays.bounds_max[k] = hi[k];
-  }
-  return arrays;
-}
-
 const detail::TraversalVariant& variant_of(TraversalStack stack, TraversalPath path = TraversalPath::FastWhereSafe) {
   if (path == TraversalPath::Robust) {
     if (stack != TraversalStack::Short) throw Error("", "the robust traversal alone is built with the short stack only");
@@ -45,7 +32,7 @@ const detail::TraversalVariant& variant_of(TraversalStack stack, TraversalPath p
 // Sizes `out` to one result per ray and runs trace(arrays, rays, results, count) over chunks of
 // `rays` on `threads` threads (0: all).
 template <typename Result, typename Trace>
-void trace_in_chunks(const detail::TraversalArrays& arrays, const std::vector<RayRecord>& rays,
+void trace_in_chunks(const TraversalArrays& arrays, const std::vector<RayRecord>& rays,
                      std::vector<Result>& out, unsigned threads, const Trace& trace) {
   constexpr size_t kChunk = 1024;  // rays per task: amortises scheduling, keeps load balanced
   out.resize(rays.size());
@@ -58,6 +45,34 @@ void trace_in_chunks(const detail::TraversalArrays& arrays, const std::vector<Ra
 
 }  // namespace
 
+TraversalArrays traversal_arrays(const KdTree& tree) {
+  TraversalArrays arrays{};
+  arrays.nodes = tree.nodes.data();
+  arrays.leaf_blocks = tree.leaf_blocks.data();
+  const float* lo = &tree.bounds.min.x;
+  const float* hi = &tree.bounds.max.x;
+  for (int k = 0; k < 3; ++k) {
+    arrays.bounds_min[k] = lo[k];
+    arrays.bounds_max[k] = hi[k];
+  }
+  return arrays;
+}
+
+bool packets_supported() { return detail::closest_in_lanes_supported(); }
+
+void trace_packet(const TraversalArrays& arrays, const RayRecord* rays, int count, HitRecord* hits) {
+  detail::closest_in_packets(arrays, rays, hits, static_cast<size_t>(count));
+}
+
+void trace_packet_any(const TraversalArrays& arrays, const RayRecord* rays, int count, uint8_t* occluded) {
+  detail::any_in_packets(arrays, rays, occluded, static_cast<size_t>(count));
+}
+
+bool traces_in_packets(const TraceOptions& options) {
+  return options.packets && options.stack == TraversalStack::Short && options.path == TraversalPath::FastWhereSafe &&
+         packets_supported();
+}
+
 bool traces_in_lanes(const KdTree& tree, const TraceOptions& options) {
   return options.lanes && tree.nodes.size() > kLanesMinNodes && options.stack == TraversalStack::Short &&
          options.path == TraversalPath::FastWhereSafe && detail::closest_in_lanes_supported();
@@ -65,20 +80,22 @@ bool traces_in_lanes(const KdTree& tree, const TraceOptions& options) {
 
 void trace_closest(const KdTree& tree, const std::vector<RayRecord>& rays, std::vector<HitRecord>& hits,
                    const TraceOptions& options) {
-  const auto closest =
-      traces_in_lanes(tree, options) ? &detail::closest_in_lanes : variant_of(options.stack, options.path).closest;
-  trace_in_chunks(arrays_of(tree), rays, hits, options.threads, closest);
+  const auto closest = traces_in_packets(options)       ? &detail::closest_in_packets
+                       : traces_in_lanes(tree, options) ? &detail::closest_in_lanes
+                                                        : variant_of(options.stack, options.path).closest;
+  trace_in_chunks(traversal_arrays(tree), rays, hits, options.threads, closest);
 }
 
 void trace_any(const KdTree& tree, const std::vector<RayRecord>& rays, std::vector<uint8_t>& occluded,
                const TraceOptions& options) {
-  trace_in_chunks(arrays_of(tree), rays, occluded, options.threads, variant_of(options.stack, options.path).any);
+  const auto any = traces_in_packets(options) ? &detail::any_in_packets : variant_of(options.stack, options.path).any;
+  trace_in_chunks(traversal_arrays(tree), rays, occluded, options.threads, any);
 }
 
 TraversalWork count_traversal_work(const KdTree& tree, const std::vector<RayRecord>& rays,
                                    std::vector<HitRecord>& hits, const TraceOptions& options) {
   std::atomic<uint64_t> inner_steps{0}, leaves{0}, triangle_tests{0}, fast_path_rays{0}, fast_path_restarts{0};
-  auto count_chunk = [&](const detail::TraversalArrays& arrays, const RayRecord* chunk, HitRecord* chunk_hits,
+  auto count_chunk = [&](const TraversalArrays& arrays, const RayRecord* chunk, HitRecord* chunk_hits,
                          size_t count) {
     const detail::TraversalCounts counts = detail::count_closest(arrays, chunk, chunk_hits, count);
     inner_steps += counts.inner_steps;
@@ -87,7 +104,7 @@ TraversalWork count_traversal_work(const KdTree& tree, const std::vector<RayReco
     fast_path_rays += counts.fast_path_rays;
     fast_path_restarts += counts.fast_path_restarts;
   };
-  trace_in_chunks(arrays_of(tree), rays, hits, options.threads, count_chunk);
+  trace_in_chunks(traversal_arrays(tree), rays, hits, options.threads, count_chunk);
   TraversalWork work;
   work.rays = rays.size();
   work.inner_steps = inner_steps;
@@ -129,7 +146,7 @@ bool copy_tree_for_rays(KdTree& tree, size_t rays, unsigned threads) {
 
 HitRecord intersect_closest(const KdTree& tree, const RayRecord& ray, TraversalStack stack) {
   HitRecord hit;
-  variant_of(stack).closest(arrays_of(tree), &ray, &hit, 1);
+  variant_of(stack).closest(traversal_arrays(tree), &ray, &hit, 1);
   return hit;
 }
 

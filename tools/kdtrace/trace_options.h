@@ -23,7 +23,7 @@ struct Options {
   uint32_t width = 1024, height = 768;
   uint64_t seed = 1;
   std::string stack_name = "short", path_name = "auto";
-  bool no_lanes = false;
+  bool no_lanes = false, packets = false;
   kdray::TraceOptions traversal;  // --threads is written here; stack and path come from their names
   kdray::DeviceSelection opencl_device;
   kdray::tool::OutputFlags flags;

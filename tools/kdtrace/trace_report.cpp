@@ -35,8 +35,9 @@ nlohmann::json trace_json(const Options& o, bool host, size_t ray_count, const T
   if (host) {
     summary["device"] = "host";
     summary["threads"] = o.traversal.threads;
-    summary["variant"] =
-        run.lanes ? "cpu-16-rays-per-thread-in-avx2-lanes+prefetch" : "cpu-one-ray-per-thread+prefetch";
+    summary["variant"] = run.packets ? "cpu-8-ray-packets-in-avx2"
+                         : run.lanes ? "cpu-16-rays-per-thread-in-avx2-lanes+prefetch"
+                                     : "cpu-one-ray-per-thread+prefetch";
     kdray::tool::add_tree_memory(summary, run.tree_copy_seconds);
   } else {
     summary["device"] = run.opencl.device;

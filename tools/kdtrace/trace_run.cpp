@@ -32,7 +32,8 @@ TraceRun trace_on(bool host, kdray::KdTree& tree, const std::vector<RayRecord>& 
   if (host) {
     kdray::trace_closest(tree, rays, run.hits, options);
     run.traversal = options.path;
-    run.lanes = kdray::traces_in_lanes(tree, options);
+    run.packets = kdray::traces_in_packets(options);
+    run.lanes = !run.packets && kdray::traces_in_lanes(tree, options);
   } else {
     opencl_device.short_stack_size = kdray::kernel_stack_size(options.stack);
     run.hits = kdray::trace_rays_opencl(tree, rays, opencl_device, &run.opencl);

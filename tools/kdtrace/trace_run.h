@@ -20,7 +20,8 @@ struct TraceRun {
   double cpu_seconds = 0;  // user + system: with the wall time, tells a busy machine
   double tree_copy_seconds = -1;  // the host's copy of a mapped tree (copy_tree_for_rays); -1: none
   kdray::TraversalPath traversal = kdray::TraversalPath::FastWhereSafe;  // the one that ran
-  bool lanes = false;  // the host traced in AVX2 lanes (kdray::traces_in_lanes)
+  bool lanes = false;    // the host traced in AVX2 lanes (kdray::traces_in_lanes)
+  bool packets = false;  // the host traced packets (kdray::traces_in_packets)
   kdray::TraceOpenClStats opencl;
 };
 

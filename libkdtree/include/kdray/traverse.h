@@ -12,9 +12,15 @@
 #include <vector>
 
 namespace kdray {
-namespace detail {
-struct TraversalArrays;
-}
+
+// The arrays a traversal reads, as plain pointers (the CPU side of kernels/kd_scene_view.h's
+// KdSceneView): a tree's (traversal_arrays), or copies of them (a renderer's scene buffers).
+struct TraversalArrays {
+  const KdNode* nodes;
+  const uint32_t* leaf_blocks;
+  float bounds_min[3], bounds_max[3];
+};
+TraversalArrays traversal_arrays(const KdTree& tree);
 
 enum class TraversalStack {
   Short,   // KD_SHORT_STACK_SIZE entries (8), restart when it runs empty: what the kernels use
@@ -34,6 +40,9 @@ struct TraceOptions {
   // trace_closest with the short stack and the fast path: 16 rays at a time per thread in AVX2
   // lanes (the same hits) where traces_in_lanes says so; false: one ray at a time.
   bool lanes = true;
+  // trace_closest and trace_any with the short stack and the fast path: kPacketRays consecutive
+  // rays at a time as one packet (the same hits) where packets_supported(), before lanes.
+  bool packets = false;
 };
 
 // Whether trace_closest runs `options` on `tree` in AVX2 lanes: where the CPU has AVX2 and the
@@ -41,6 +50,21 @@ struct TraceOptions {
 // too few to repay handing it to a lane (bench/LOG.md, "Rays in AVX2 lanes").
 constexpr size_t kLanesMinNodes = 256;
 bool traces_in_lanes(const KdTree& tree, const TraceOptions& options);
+// Whether trace_closest and trace_any run `options` as packets (TraceOptions::packets).
+bool traces_in_packets(const TraceOptions& options);
+
+// Rays traced together as one packet (an AVX2 register's lanes): each inner node's step and each
+// triangle's test are made once for all of them. Rays that run close together (camera rays of
+// neighbouring pixels or samples, shadow rays from neighbouring points towards one light) meet
+// nearly the same nodes and triangles and are traced 2-3 times as fast so; rays that run apart
+// (random rays, bounces off diffuse surfaces) share few and are slower (bench/LOG.md, "Packets
+// of eight rays"). The hits are one ray at a time's, byte for byte.
+constexpr int kPacketRays = 8;
+bool packets_supported();  // where the CPU has AVX2
+// The closest hits of rays [0, count), count <= kPacketRays, as trace_closest's; and whether each
+// is occluded, as trace_any's (1 or 0).
+void trace_packet(const TraversalArrays& arrays, const RayRecord* rays, int count, HitRecord* hits);
+void trace_packet_any(const TraversalArrays& arrays, const RayRecord* rays, int count, uint8_t* occluded);
 
 // Each triangle's three corners copied from the scene's positions, KD_TRIANGLE_FLOATS floats
 // (36 bytes) per triangle in triangle order: what shading reads of a hit triangle.

@@ -8,7 +8,9 @@
 // mirror, glass; textures looked up lane by lane). Those, and a ray that leaves the scene towards
 // an environment, are shaded by pt_path_shade lane by lane, and their paths stay in their lanes.
 // Then the shadow rays are traced; a path that ends is added to the film and its lane takes the
-// next sample. The shading in lanes calls the device code's lane functions (kernels/kd_lane.h)
+// next path. Paths take their first segment eight at a time before they take a lane
+// (FirstSegments): the camera rays and shadow rays of eight samples in a row run close together,
+// and are traced as one packet each (kdray::trace_packet). The shading in lanes calls the device code's lane functions (kernels/kd_lane.h)
 // with 8-float lanes (lane8.h), so each lane computes what pt_path_shade computes for its path,
 // bit for bit, and the film is the scalar path tracer's and the kernel's
 // (tests/render/cpu_integrator.h compares them). Sample values, the light pick's search and a
@@ -527,18 +529,110 @@ inline void accumulate(Paths& ps, int l, const PtRenderParams* params, int64_t* 
   for (uint32_t c = 0; c < params->film_channels; ++c) film[(size_t)path.pixel * params->film_channels + c] += sums[c];
 }
 
-// pt_render_pixel for pixels [begin_pixel, end_pixel): the rays traced.
+// Lane `to` of `into` takes over the path in lane `from` of `paths` (which loses it).
+inline void move_path(Paths& into, int to, Paths& paths, int from) {
+  for (auto member : {&Paths::ox, &Paths::oy, &Paths::oz, &Paths::dx, &Paths::dy, &Paths::dz, &Paths::tx, &Paths::ty,
+                      &Paths::tz, &Paths::rx, &Paths::ry, &Paths::rz, &Paths::bsdf_pdf})
+    (into.*member)[to] = (paths.*member)[from];
+  into.bounce[to] = paths.bounce[from];
+  into.sample_hash[to] = paths.sample_hash[from];
+  into.sample[to] = paths.sample[from];
+  into.path[to] = paths.path[from];
+  into.alive |= 1 << to;
+  paths.alive &= ~(1 << from);
+}
+
+// The shadow rays of the lanes in ps.shadow, traced one at a time (pt_path_occluded), or with
+// `packet` (the tree's arrays) as one packet (kdray::trace_packet_any) where no surface is
+// alpha-tested: a light sample's contribution is added where its ray is not occluded.
+inline void trace_shadow_rays(Paths& ps, const PtSceneData* scene, const PtRenderParams* params,
+                              const kdray::TraversalArrays* packet) {
+  if (packet && !PT_USES(params, PT_FEATURE_ALPHA)) {
+    RayRecord rays[kLanes];
+    int lane_of[kLanes], count = 0;
+    for (int lanes = ps.shadow; lanes; lanes &= lanes - 1) {
+      const int l = __builtin_ctz(lanes);
+      rays[count] = RayRecord{ps.sox[l], ps.soy[l], ps.soz[l], ps.ssx[l], ps.ssy[l], ps.ssz[l], 0.0f, 1.0f};
+      lane_of[count++] = l;
+    }
+    uint8_t occluded[kLanes];
+    kdray::trace_packet_any(*packet, rays, count, occluded);
+    for (int i = 0; i < count; ++i) {
+      const int l = lane_of[i];
+      if (!occluded[i]) ps.rx[l] += ps.scx[l], ps.ry[l] += ps.scy[l], ps.rz[l] += ps.scz[l];
+    }
+    return;
+  }
+  for (int lanes = ps.shadow; lanes; lanes &= lanes - 1) {
+    const int l = __builtin_ctz(lanes);
+    PtPath& path = ps.path[l];  // what pt_path_occluded reads of it
+    path.shadow_origin = KD_FLOAT3(ps.sox[l], ps.soy[l], ps.soz[l]);
+    path.shadow_span = KD_FLOAT3(ps.ssx[l], ps.ssy[l], ps.ssz[l]);
+    path.bounce = (uint32_t)ps.bounce[l];
+    if (!pt_path_occluded(scene, &path, params)) {
+      ps.rx[l] += ps.scx[l];
+      ps.ry[l] += ps.scy[l];
+      ps.rz[l] += ps.scz[l];
+    }
+  }
+}
+
+// The samples of pixels [begin_pixel, end_pixel) in order, and their paths' first segments
+// eight at a time: the eight samples begun together, their camera rays traced as one packet
+// (kdray::trace_packet), shaded in lanes and their shadow rays traced as one packet. Those rays
+// run close together, so a packet traces them 2-3 times as fast as one at a time (bench/LOG.md,
+// "Packets of eight rays"); the later rays of the paths run apart and are traced one at a time.
+struct FirstSegments {
+  Paths paths;  // the paths that go on after their first segment: paths.alive
+  uint32_t next_pixel, end_pixel, next_sample = 0;
+  uint64_t rays = 0;
+
+  // Takes the next (up to) eight samples through their first segment; false when none is left.
+  __attribute__((noinline)) bool next(const PtSceneData* scene, const PtRenderParams* params,
+                                      const kdray::TraversalArrays& arrays, int64_t* film, uint32_t* nonfinite) {
+    int count = 0;
+    for (; count < kLanes && next_pixel != end_pixel; ++count) {
+      begin(paths, count, params, next_pixel, params->sample_offset + next_sample);
+      if (++next_sample == params->sample_count) next_sample = 0, ++next_pixel;
+    }
+    if (count == 0) return false;
+    RayRecord camera[kLanes];
+    for (int l = 0; l < count; ++l)
+      camera[l] = pt_ray(KD_FLOAT3(paths.ox[l], paths.oy[l], paths.oz[l]),
+                         KD_FLOAT3(paths.dx[l], paths.dy[l], paths.dz[l]), INFINITY);
+    HitRecord hits[kLanes];
+    kdray::trace_packet(arrays, camera, count, hits);
+    rays += (uint64_t)count;
+    const int begun = paths.alive;
+    shade(paths, scene, params, hits);
+    rays += (uint64_t)__builtin_popcount(paths.shadow);
+    trace_shadow_rays(paths, scene, params, &arrays);
+    for (int ended = begun & ~paths.alive; ended; ended &= ended - 1)
+      accumulate(paths, __builtin_ctz(ended), params, film, nonfinite);
+    return true;
+  }
+};
+
+// pt_render_pixel for pixels [begin_pixel, end_pixel): the rays traced. Each path's arithmetic is
+// the same whichever lane takes it, and the film's sums are integers, so the film does not depend
+// on which lane took which path.
 inline uint64_t render(const PtSceneData* scene, const PtRenderParams* params, uint32_t begin_pixel, uint32_t end_pixel,
                        int64_t* film, uint32_t* nonfinite) {
-  Paths ps;
-  uint64_t rays = 0;
-  uint32_t next_pixel = begin_pixel, next_sample = 0;
-  auto refill = [&](int l) {
-    if (next_pixel == end_pixel) return;
-    begin(ps, l, params, next_pixel, params->sample_offset + next_sample);
-    if (++next_sample == params->sample_count) next_sample = 0, ++next_pixel;
-  };
   if (params->sample_count == 0) return 0;
+  const kdray::TraversalArrays arrays{scene->kd.nodes, scene->kd.leaf_blocks,
+                                      {scene->kd.bounds_min[0], scene->kd.bounds_min[1], scene->kd.bounds_min[2]},
+                                      {scene->kd.bounds_max[0], scene->kd.bounds_max[1], scene->kd.bounds_max[2]}};
+  Paths ps;
+  FirstSegments first;
+  first.next_pixel = begin_pixel;
+  first.end_pixel = end_pixel;
+  uint64_t rays = 0;
+  // Lane l takes the next path that goes on after its first segment, if any is left.
+  auto refill = [&](int l) {
+    while (!first.paths.alive)
+      if (!first.next(scene, params, arrays, film, nonfinite)) return;
+    move_path(ps, l, first.paths, __builtin_ctz(first.paths.alive));
+  };
   for (int l = 0; l < kLanes; ++l) refill(l);
   HitRecord hits[kLanes];
   while (ps.alive) {
@@ -550,19 +644,8 @@ inline uint64_t render(const PtSceneData* scene, const PtRenderParams* params, u
       }
     const int was_alive = ps.alive;
     shade(ps, scene, params, hits);
-    for (int l = 0; l < kLanes; ++l)
-      if (ps.shadow >> l & 1) {
-        ++rays;
-        PtPath& path = ps.path[l];  // what pt_path_occluded reads of it
-        path.shadow_origin = KD_FLOAT3(ps.sox[l], ps.soy[l], ps.soz[l]);
-        path.shadow_span = KD_FLOAT3(ps.ssx[l], ps.ssy[l], ps.ssz[l]);
-        path.bounce = (uint32_t)ps.bounce[l];
-        if (!pt_path_occluded(scene, &path, params)) {
-          ps.rx[l] += ps.scx[l];
-          ps.ry[l] += ps.scy[l];
-          ps.rz[l] += ps.scz[l];
-        }
-      }
+    rays += (uint64_t)__builtin_popcount(ps.shadow);
+    trace_shadow_rays(ps, scene, params, nullptr);
     const int ended = was_alive & ~ps.alive;
     for (int l = 0; l < kLanes; ++l)
       if (ended >> l & 1) {
@@ -570,7 +653,7 @@ inline uint64_t render(const PtSceneData* scene, const PtRenderParams* params, u
         refill(l);
       }
   }
-  return rays;
+  return rays + first.rays;
 }
 
 }  // namespace path_lanes

@@ -34,6 +34,8 @@
 
 #include "render_host_pixels.h"
 
+#include <kdray/traverse.h>  // the packets of path_lanes.h
+
 #include <kernels/kd_vector.h>
 
 #ifdef __AVX2__

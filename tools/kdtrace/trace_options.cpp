@@ -50,7 +50,7 @@ void add_options(CLI::App& app, Options& o) {
   app.add_flag("--packets", o.packets,
                "On the host: 8 consecutive rays at a time as one packet (AVX2), which pays for rays that run "
                "close together in the file, such as camera rays in pixel order (2-3 times as fast), and "
-               "costs for rays that run apart (0.7-0.85x on random rays); the same hits")
+               "costs for rays that run apart (0.65-0.85x on random rays); the same hits")
       ->group("Device");
 }
 

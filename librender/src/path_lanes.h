@@ -13,8 +13,9 @@
 // and are traced as one packet each (kdray::trace_packet). The shading in lanes calls the device code's lane functions (kernels/kd_lane.h)
 // with 8-float lanes (lane8.h), so each lane computes what pt_path_shade computes for its path,
 // bit for bit, and the film is the scalar path tracer's and the kernel's
-// (tests/render/cpu_integrator.h compares them). Sample values, the light pick's search and a
-// path's start and film sums stay scalar, lane by lane.
+// (tests/render/cpu_integrator.h compares them). A path's start is computed in lanes for the eight
+// paths begun together (begin_in_lanes); the light pick's search and the film sums stay scalar,
+// lane by lane.
 //
 // Compiled into the x86-64-v3 build of render_host_pixels.cpp, inside its namespace after the
 // device code, whose functions it calls.
@@ -520,6 +521,73 @@ inline void begin(Paths& ps, int l, const PtRenderParams* params, uint32_t pixel
   ps.alive |= 1 << l;
 }
 
+// pt_path_begin into lanes [0, count) of paths that have none, sample `samples[l]` of pixel
+// `pixels[l]`: the sample hashes, the camera's two values and the camera rays of all of them in
+// lanes (each lane with pt_path_begin's operations); an orthographic camera lane by lane.
+inline void begin_in_lanes(Paths& ps, int count, const PtRenderParams* params, const uint32_t* pixels,
+                           const uint32_t* samples) {
+  if (PT_USES(params, PT_FEATURE_ORTHOGRAPHIC)) {
+    for (int l = 0; l < count; ++l) begin(ps, l, params, pixels[l], samples[l]);
+    return;
+  }
+  alignas(32) uint32_t pixel[kLanes] = {}, sample[kLanes] = {};
+  alignas(32) float x[kLanes] = {}, y[kLanes] = {};
+  for (int l = 0; l < count; ++l) {
+    pixel[l] = pixels[l], sample[l] = samples[l];
+    x[l] = (float)(pixels[l] % params->width), y[l] = (float)(pixels[l] / params->width);
+  }
+  const UintVector pixel_lanes = (UintVector)load(pixel).v, sample_lanes = (UintVector)load(sample).v;
+  // pt_sample_hash
+  UintVector sample_hash;
+  if (params->sampler == PT_SAMPLER_INDEPENDENT) {
+    sample_hash = pt_hash32(params->seed ^ 0x9e3779b9u) ^ pixel_lanes;
+    PT_HASH32_STEPS(sample_hash);
+    sample_hash ^= sample_lanes;
+    PT_HASH32_STEPS(sample_hash);
+  } else {
+    sample_hash = pt_hash32(params->seed ^ 0x5851f42du) ^ pixel_lanes;
+    PT_HASH32_STEPS(sample_hash);
+  }
+  UintVector reversed_index = sample_lanes;
+  PT_LANES_REVERSE_BITS(reversed_index);
+  auto value = [&](uint32_t dimension) {
+    UintVector bits;
+    PT_HASHED_BITS_IN_LANES(bits, params->sampler, sample_hash, reversed_index, PT_LANES_SPLAT(dimension));
+    return Float8((FloatVector)_mm256_cvtepi32_ps((__m256i)(bits >> 8))) * (1.0f / 16777216.0f);  // pt_bits_to_unit
+  };
+  const Float8 sx = 2.0f * (load(x) + value(PT_DIM_CAMERA_X)) / (float)params->width - 1.0f;
+  const Float8 sy = 1.0f - 2.0f * (load(y) + value(PT_DIM_CAMERA_Y)) / (float)params->height;
+  auto splat3 = [](const float* v) { return Float8x3{Float8(v[0]), Float8(v[1]), Float8(v[2])}; };
+  const Float8x3 direction =
+      kd_normalize(splat3(params->cam_forward) + sx * splat3(params->cam_right) + sy * splat3(params->cam_up));
+  store3(ps.dx, ps.dy, ps.dz, direction);
+  store3(ps.ox, ps.oy, ps.oz, splat3(params->cam_origin));
+  store3(ps.tx, ps.ty, ps.tz, Float8x3{1.0f, 1.0f, 1.0f});
+  store3(ps.rx, ps.ry, ps.rz, Float8x3{0.0f, 0.0f, 0.0f});
+  store(ps.bsdf_pdf, Float8(0.0f));
+  store(ps.bounce, Int8(0));
+  store(reinterpret_cast<int32_t*>(ps.sample_hash), Int8((IntVector)sample_hash));
+  store(reinterpret_cast<int32_t*>(ps.sample), Int8((IntVector)sample_lanes));
+  for (int l = 0; l < count; ++l) {
+    PtPath& path = ps.path[l];
+    path.origin = KD_FLOAT3(ps.ox[l], ps.oy[l], ps.oz[l]);
+    path.direction = KD_FLOAT3(ps.dx[l], ps.dy[l], ps.dz[l]);
+    path.throughput = kd_splat3(1.0f);
+    path.radiance = kd_splat3(0.0f);
+    path.albedo = kd_splat3(0.0f);
+    path.normal = kd_splat3(0.0f);
+    path.depth = 0.0f;
+    path.bsdf_pdf = 0.0f;
+    path.pixel = pixels[l];
+    path.sample = samples[l];
+    path.sample_hash = ps.sample_hash[l];
+    path.bounce = 0;
+    path.alive = 1;
+    path.shadow_pending = 0;
+  }
+  ps.alive |= count >= kLanes ? 0xff : (1 << count) - 1;
+}
+
 // pt_path_accumulate of lane l's path, into its pixel's film sums.
 inline void accumulate(Paths& ps, int l, const PtRenderParams* params, int64_t* film, uint32_t* nonfinite) {
   PtPath& path = ps.path[l];
@@ -590,12 +658,14 @@ struct FirstSegments {
   // Takes the next (up to) eight samples through their first segment; false when none is left.
   __attribute__((noinline)) bool next(const PtSceneData* scene, const PtRenderParams* params,
                                       const kdray::TraversalArrays& arrays, int64_t* film, uint32_t* nonfinite) {
+    uint32_t pixels[kLanes], samples[kLanes];
     int count = 0;
     for (; count < kLanes && next_pixel != end_pixel; ++count) {
-      begin(paths, count, params, next_pixel, params->sample_offset + next_sample);
+      pixels[count] = next_pixel, samples[count] = params->sample_offset + next_sample;
       if (++next_sample == params->sample_count) next_sample = 0, ++next_pixel;
     }
     if (count == 0) return false;
+    begin_in_lanes(paths, count, params, pixels, samples);
     RayRecord camera[kLanes];
     for (int l = 0; l < count; ++l)
       camera[l] = pt_ray(KD_FLOAT3(paths.ox[l], paths.oy[l], paths.oz[l]),

@@ -18,8 +18,8 @@ using kdray::TraversalArrays;
 
 // The KdSceneView of one compilation of kd_traverse.h: each lives in its own namespace, so the
 // caller passes that namespace's kd_scene_view.
-template <typename SceneView>
-auto make_view(SceneView scene_view, const TraversalArrays& arrays) {
+template <typename SceneView, typename Arrays = TraversalArrays>
+auto make_view(SceneView scene_view, const Arrays& arrays) {
   const float* lo = arrays.bounds_min;
   const float* hi = arrays.bounds_max;
   return scene_view(arrays.nodes, arrays.leaf_blocks, lo[0], lo[1], lo[2], hi[0], hi[1],

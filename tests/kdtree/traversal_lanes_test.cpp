@@ -3,6 +3,7 @@
 // trees deeper than the short stack (rays that overflow it and are traced again) and trees of
 // every size, the ones too small for trace_closest to choose the lanes included.
 #include "test_scenes.h"
+#include "traversal_comparison.h"
 #include "traversal_variant.h"
 
 #include <kdray/kdtree.h>
@@ -21,28 +22,14 @@
 namespace kdray {
 namespace {
 
-// Traces `rays` both ways and reports the first ray whose hit record differs in any byte.
+// Traces `rays` both ways and expects the same hit records.
 void expect_lanes_match_one_ray_at_a_time(const KdTree& tree, const std::vector<RayRecord>& rays,
                                           const std::string& name) {
-  detail::TraversalArrays arrays{};
-  arrays.nodes = tree.nodes.data();
-  arrays.leaf_blocks = tree.leaf_blocks.data();
-  for (int k = 0; k < 3; ++k) {
-    arrays.bounds_min[k] = (&tree.bounds.min.x)[k];
-    arrays.bounds_max[k] = (&tree.bounds.max.x)[k];
-  }
+  const TraversalArrays arrays = traversal_arrays(tree);
   std::vector<HitRecord> one(rays.size()), lanes(rays.size());
   detail::traversal_short_stack().closest(arrays, rays.data(), one.data(), rays.size());
   detail::closest_in_lanes(arrays, rays.data(), lanes.data(), rays.size());
-  size_t differing = 0, first = 0, hits = 0;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    hits += one[i].triangle != KD_NO_HIT;
-    if (std::memcmp(&one[i], &lanes[i], sizeof(HitRecord)) != 0 && differing++ == 0) first = i;
-  }
-  EXPECT_EQ(differing, 0u) << name << ": " << differing << " of " << rays.size() << " rays differ; first ray " << first
-                           << ": one at a time triangle " << one[first].triangle << " t " << one[first].t
-                           << ", lanes triangle " << lanes[first].triangle << " t " << lanes[first].t;
-  EXPECT_GT(hits, rays.size() / 10) << name << ": the rays must hit something to compare";
+  test::expect_same_hits(one, lanes, name, "lanes");
 }
 
 class TraversalLanes : public ::testing::Test {
@@ -67,12 +54,7 @@ TEST_F(TraversalLanes, SameHitsOnTheBunnyAndFromInsideIt) {
   const Scene scene = test::mesh_file(path);
   const KdTree tree = build_kdtree(scene, BuildSettings{});
   ASSERT_GT(tree.nodes.size(), kLanesMinNodes) << "trace_closest must choose the lanes for this tree";
-  std::vector<RayRecord> rays = test::ray_mix(scene, tree, 6000, 21);
-  const Bounds bounds = scene_bounds(scene);
-  const Vec3 centre{(bounds.min.x + bounds.max.x) / 2, (bounds.min.y + bounds.max.y) / 2,
-                    (bounds.min.z + bounds.max.z) / 2};
-  const std::vector<RayRecord> inside = rays_toward_surface(scene, centre, 6000, 23);
-  rays.insert(rays.end(), inside.begin(), inside.end());
+  const std::vector<RayRecord> rays = test::rays_outside_and_inside(scene, tree, 6000, 21);
   expect_lanes_match_one_ray_at_a_time(tree, rays, "bunny");
 
   std::vector<HitRecord> chosen, one;

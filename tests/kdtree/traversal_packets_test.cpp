@@ -2,6 +2,7 @@
 // closest hits byte for byte, and its occlusion answers: on random, hard-case and camera rays,
 // rays from inside a closed mesh, trees of both leaf layouts and trees deeper than the short stack.
 #include "test_scenes.h"
+#include "traversal_comparison.h"
 #include "traversal_variant.h"
 
 #include <kdray/kdtree.h>
@@ -28,15 +29,7 @@ void expect_packets_match_one_ray_at_a_time(const KdTree& tree, const std::vecto
   std::vector<HitRecord> one(rays.size()), packets(rays.size());
   detail::traversal_short_stack().closest(arrays, rays.data(), one.data(), rays.size());
   detail::closest_in_packets(arrays, rays.data(), packets.data(), rays.size());
-  size_t differing = 0, first = 0, hits = 0;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    hits += one[i].triangle != KD_NO_HIT;
-    if (std::memcmp(&one[i], &packets[i], sizeof(HitRecord)) != 0 && differing++ == 0) first = i;
-  }
-  EXPECT_EQ(differing, 0u) << name << ": " << differing << " of " << rays.size() << " rays differ; first ray " << first
-                           << ": one at a time triangle " << one[first].triangle << " t " << one[first].t
-                           << ", packets triangle " << packets[first].triangle << " t " << packets[first].t;
-  EXPECT_GT(hits, rays.size() / 10) << name << ": the rays must hit something to compare";
+  test::expect_same_hits(one, packets, name, "packets");
 
   std::vector<uint8_t> one_any(rays.size()), packets_any(rays.size());
   detail::traversal_short_stack().any(arrays, rays.data(), one_any.data(), rays.size());
@@ -79,12 +72,7 @@ TEST_F(TraversalPackets, SameHitsOnTheBunnyAndFromInsideIt) {
     BuildSettings settings;
     settings.leaf_layout = layout;
     const KdTree tree = build_kdtree(scene, settings);
-    std::vector<RayRecord> rays = test::ray_mix(scene, tree, 6000, 21);
-    const Bounds bounds = scene_bounds(scene);
-    const Vec3 centre{(bounds.min.x + bounds.max.x) / 2, (bounds.min.y + bounds.max.y) / 2,
-                      (bounds.min.z + bounds.max.z) / 2};
-    const std::vector<RayRecord> inside = rays_toward_surface(scene, centre, 6000, 23);
-    rays.insert(rays.end(), inside.begin(), inside.end());
+    const std::vector<RayRecord> rays = test::rays_outside_and_inside(scene, tree, 6000, 21);
     expect_packets_match_one_ray_at_a_time(tree, rays, layout == LeafLayout::grouped ? "bunny, grouped" : "bunny, paged");
 
     // trace_closest and trace_any choose the packets when asked, and only then.

@@ -10,7 +10,6 @@
 #include <kdray/ray_sets.h>
 #include <kdray/traverse.h>
 
-#include <icosphere.h>
 #include <test_corpus.h>
 
 #include <gtest/gtest.h>
@@ -22,14 +21,9 @@
 namespace kdray {
 namespace {
 
-// Traces `rays` both ways and expects the same hit records.
 void expect_lanes_match_one_ray_at_a_time(const KdTree& tree, const std::vector<RayRecord>& rays,
                                           const std::string& name) {
-  const TraversalArrays arrays = traversal_arrays(tree);
-  std::vector<HitRecord> one(rays.size()), lanes(rays.size());
-  detail::traversal_short_stack().closest(arrays, rays.data(), one.data(), rays.size());
-  detail::closest_in_lanes(arrays, rays.data(), lanes.data(), rays.size());
-  test::expect_same_hits(one, lanes, name, "lanes");
+  test::expect_closest_matches_one_ray_at_a_time(tree, rays, &detail::closest_in_lanes, name, "lanes");
 }
 
 class TraversalLanes : public ::testing::Test {
@@ -70,13 +64,8 @@ TEST_F(TraversalLanes, SameHitsOnTheBunnyAndFromInsideIt) {
 // A tessellated sphere's tree is deeper than the short stack: some rays overflow it, and those
 // are traced again from the start, as the scalar fast path does.
 TEST_F(TraversalLanes, SameHitsWhereTheShortStackOverflows) {
-  const Scene scene = test::icosphere_scene(5, {0, 0, 0}, 1.0f);
-  const KdTree tree = build_kdtree(scene, BuildSettings{});
-  const std::vector<RayRecord> rays = random_rays(scene_bounds(scene), 20000, 41);
-  std::vector<HitRecord> counted;
-  const TraversalWork work = count_traversal_work(tree, rays, counted);
-  ASSERT_GT(work.fast_path_restarts, 0u) << "some rays must overflow the short stack";
-  expect_lanes_match_one_ray_at_a_time(tree, rays, "icosphere");
+  const test::DeepTree deep = test::deep_tree_and_rays();
+  expect_lanes_match_one_ray_at_a_time(deep.tree, deep.rays, "icosphere");
 }
 
 }  // namespace

@@ -9,7 +9,6 @@
 #include <kdray/ray_sets.h>
 #include <kdray/traverse.h>
 
-#include <icosphere.h>
 #include <test_corpus.h>
 
 #include <gtest/gtest.h>
@@ -25,12 +24,8 @@ namespace {
 // answer differs.
 void expect_packets_match_one_ray_at_a_time(const KdTree& tree, const std::vector<RayRecord>& rays,
                                             const std::string& name) {
+  test::expect_closest_matches_one_ray_at_a_time(tree, rays, &detail::closest_in_packets, name, "packets");
   const TraversalArrays arrays = traversal_arrays(tree);
-  std::vector<HitRecord> one(rays.size()), packets(rays.size());
-  detail::traversal_short_stack().closest(arrays, rays.data(), one.data(), rays.size());
-  detail::closest_in_packets(arrays, rays.data(), packets.data(), rays.size());
-  test::expect_same_hits(one, packets, name, "packets");
-
   std::vector<uint8_t> one_any(rays.size()), packets_any(rays.size());
   detail::traversal_short_stack().any(arrays, rays.data(), one_any.data(), rays.size());
   detail::any_in_packets(arrays, rays.data(), packets_any.data(), rays.size());
@@ -94,13 +89,8 @@ TEST_F(TraversalPackets, SameHitsOnTheBunnyAndFromInsideIt) {
 // A tessellated sphere's tree is deeper than the short stack: the packets' stack holds a level
 // each, so no ray is traced again.
 TEST_F(TraversalPackets, SameHitsWhereTheShortStackOverflows) {
-  const Scene scene = test::icosphere_scene(5, {0, 0, 0}, 1.0f);
-  const KdTree tree = build_kdtree(scene, BuildSettings{});
-  const std::vector<RayRecord> rays = random_rays(scene_bounds(scene), 20000, 41);
-  std::vector<HitRecord> counted;
-  const TraversalWork work = count_traversal_work(tree, rays, counted);
-  ASSERT_GT(work.fast_path_restarts, 0u) << "some rays must overflow the short stack";
-  expect_packets_match_one_ray_at_a_time(tree, rays, "icosphere");
+  const test::DeepTree deep = test::deep_tree_and_rays();
+  expect_packets_match_one_ray_at_a_time(deep.tree, deep.rays, "icosphere");
 }
 
 // A packet of fewer rays than lanes, and one whose rays mostly miss, from the public entry points.

@@ -141,23 +141,29 @@ KD_INLINE int kd_ray_box(const KdRay* ray, const float bmin[3], const float bmax
   return lo <= hi;
 }
 
-/* The watertight test's arithmetic, written once for one triangle (TYPE float) and for four side
- * by side (TYPE kd_f4, kd_intersect_leaf on CPUs), so that every lane makes the one triangle's
+/* The watertight test's arithmetic, written once for one triangle (TYPE float), for four side by
+ * side (TYPE kd_f4, kd_intersect_leaf on CPUs) and for one triangle against eight rays (the host's
+ * packets, libkdtree/src/traversal_packets.cpp), so that every lane makes the one triangle's
  * operations in the same order: from the corners' coordinates in the ray's axis order (kx, ky,
  * kz) it declares the corners' z relative to the origin (Az, Bz, Cz), their sheared x and y, and
- * the edge functions U, V and W. */
-#define KD_WATERTIGHT_EDGES(TYPE, ray, AX, AY, AZ, BX, BY, BZ, CX, CY, CZ)                             \
-  const float kd_ox_ = (ray)->org[(ray)->kx], kd_oy_ = (ray)->org[(ray)->ky], kd_oz_ = (ray)->org[(ray)->kz]; \
+ * the edge functions U, V and W. KD_WATERTIGHT_EDGES_FROM takes the origin in that order and the
+ * shear (of type ORIGIN_TYPE: a float, or a lane of each ray's in a packet); KD_WATERTIGHT_EDGES
+ * takes them from a KdRay. */
+#define KD_WATERTIGHT_EDGES_FROM(TYPE, ORIGIN_TYPE, OX, OY, OZ, SX, SY, AX, AY, AZ, BX, BY, BZ, CX, CY, CZ) \
+  const ORIGIN_TYPE kd_ox_ = (OX), kd_oy_ = (OY), kd_oz_ = (OZ);                                      \
   const TYPE Az = (AZ) - kd_oz_, Bz = (BZ) - kd_oz_, Cz = (CZ) - kd_oz_;                              \
-  const TYPE ax = ((AX) - kd_ox_) - (ray)->sx * Az;                                                  \
-  const TYPE ay = ((AY) - kd_oy_) - (ray)->sy * Az;                                                  \
-  const TYPE bx = ((BX) - kd_ox_) - (ray)->sx * Bz;                                                  \
-  const TYPE by = ((BY) - kd_oy_) - (ray)->sy * Bz;                                                  \
-  const TYPE cx = ((CX) - kd_ox_) - (ray)->sx * Cz;                                                  \
-  const TYPE cy = ((CY) - kd_oy_) - (ray)->sy * Cz;                                                  \
+  const TYPE ax = ((AX) - kd_ox_) - (SX) * Az;                                                       \
+  const TYPE ay = ((AY) - kd_oy_) - (SY) * Az;                                                       \
+  const TYPE bx = ((BX) - kd_ox_) - (SX) * Bz;                                                       \
+  const TYPE by = ((BY) - kd_oy_) - (SY) * Bz;                                                       \
+  const TYPE cx = ((CX) - kd_ox_) - (SX) * Cz;                                                       \
+  const TYPE cy = ((CY) - kd_oy_) - (SY) * Cz;                                                       \
   TYPE U = cx * by - cy * bx;                                                                        \
   TYPE V = ax * cy - ay * cx;                                                                        \
   TYPE W = bx * ay - by * ax
+#define KD_WATERTIGHT_EDGES(TYPE, ray, AX, AY, AZ, BX, BY, BZ, CX, CY, CZ)                                      \
+  KD_WATERTIGHT_EDGES_FROM(TYPE, float, (ray)->org[(ray)->kx], (ray)->org[(ray)->ky], (ray)->org[(ray)->kz], \
+                           (ray)->sx, (ray)->sy, AX, AY, AZ, BX, BY, BZ, CX, CY, CZ)
 
 /* The hit's distance times the determinant U + V + W, from KD_WATERTIGHT_EDGES's values. */
 #define KD_WATERTIGHT_T(ray, U, V, W, Az, Bz, Cz) \

@@ -8,7 +8,7 @@
 // decisions at every inner node it meets (kernels/kd_traverse_fast.h: the same t_split, the same
 // widened bounds), so it visits every leaf that ray visits, and others only where the packet's
 // order differs from its own; its triangle tests are the watertight test's operations in the
-// same order (KD_WATERTIGHT_EDGES), and a hit replaces the best one by kd_hit_precedes's rule,
+// same order (KD_WATERTIGHT_EDGES_FROM), and a hit replaces the best one by kd_hit_precedes's rule,
 // whose result is the smallest (t, triangle) pair whatever the leaves visited in whatever order.
 // A ray the fast path does not take (a zero direction component) is traced alone, robustly.
 #include "traversal_variant.h"
@@ -52,7 +52,6 @@ inline Floats load(const float* p) {
   std::memcpy(&v, p, sizeof v);
   return v;
 }
-inline void store(float* p, Floats v) { std::memcpy(p, &v, sizeof v); }
 // kd_minf and kd_maxf lane by lane, the same operands in the same places.
 inline Floats min_of(Floats a, Floats b) { return b < a ? b : a; }
 inline Floats max_of(Floats a, Floats b) { return a < b ? b : a; }
@@ -98,7 +97,7 @@ void set_up(Packet& p, const KdSceneView* scene, const RayRecord* rays, int coun
   for (int k = 0; k < 3; ++k) {
     p.org[k] = load(field[k]);
     p.dir[k] = load(field[3 + k]);
-    finite &= (p.org[k] - p.org[k] == splat(0.0f)) & (p.dir[k] - p.dir[k] == splat(0.0f));
+    finite &= (p.org[k] - p.org[k] == splat(0.0f)) & (p.dir[k] - p.dir[k] == splat(0.0f));  // x - x: NaN unless finite
     // kd_safe_reciprocal
     const Floats magnitude = (Floats)((Ints)p.dir[k] & 0x7fffffff);
     const Floats huge = (Floats)(((Ints)splat(KD_HUGE_RECIPROCAL)) | ((Ints)p.dir[k] & INT32_MIN));
@@ -172,19 +171,13 @@ void intersect_leaf(Packet& p, const KdSceneView* scene, KdNode leaf, int lanes,
     const Floats a0 = splat(a[0]), a1 = splat(a[stride]), a2 = splat(a[2 * stride]);
     const Floats b0 = splat(b[0]), b1 = splat(b[stride]), b2 = splat(b[2 * stride]);
     const Floats c0 = splat(c[0]), c1 = splat(c[stride]), c2 = splat(c[2 * stride]);
-    // KD_WATERTIGHT_EDGES's operations, each lane in its own ray's axis order
-    const Floats Az = by_axis(p.kz_is0, p.kz_is1, a0, a1, a2) - p.org_z;
-    const Floats Bz = by_axis(p.kz_is0, p.kz_is1, b0, b1, b2) - p.org_z;
-    const Floats Cz = by_axis(p.kz_is0, p.kz_is1, c0, c1, c2) - p.org_z;
-    const Floats ax = (by_axis(p.kx_is0, p.kx_is1, a0, a1, a2) - p.org_x) - p.sx * Az;
-    const Floats ay = (by_axis(p.ky_is0, p.ky_is1, a0, a1, a2) - p.org_y) - p.sy * Az;
-    const Floats bx = (by_axis(p.kx_is0, p.kx_is1, b0, b1, b2) - p.org_x) - p.sx * Bz;
-    const Floats by = (by_axis(p.ky_is0, p.ky_is1, b0, b1, b2) - p.org_y) - p.sy * Bz;
-    const Floats cx = (by_axis(p.kx_is0, p.kx_is1, c0, c1, c2) - p.org_x) - p.sx * Cz;
-    const Floats cy = (by_axis(p.ky_is0, p.ky_is1, c0, c1, c2) - p.org_y) - p.sy * Cz;
-    const Floats U = cx * by - cy * bx;
-    const Floats V = ax * cy - ay * cx;
-    const Floats W = bx * ay - by * ax;
+    // each lane with its own ray's axis order
+    KD_WATERTIGHT_EDGES_FROM(Floats, Floats, p.org_x, p.org_y, p.org_z, p.sx, p.sy,
+                             by_axis(p.kx_is0, p.kx_is1, a0, a1, a2), by_axis(p.ky_is0, p.ky_is1, a0, a1, a2),
+                             by_axis(p.kz_is0, p.kz_is1, a0, a1, a2), by_axis(p.kx_is0, p.kx_is1, b0, b1, b2),
+                             by_axis(p.ky_is0, p.ky_is1, b0, b1, b2), by_axis(p.kz_is0, p.kz_is1, b0, b1, b2),
+                             by_axis(p.kx_is0, p.kx_is1, c0, c1, c2), by_axis(p.ky_is0, p.ky_is1, c0, c1, c2),
+                             by_axis(p.kz_is0, p.kz_is1, c0, c1, c2));
     const Floats zero = splat(0.0f);
     const Ints any_zero = (U == zero) | (V == zero) | (W == zero);
     const Ints outside = ((U < zero) | (V < zero) | (W < zero)) & ((U > zero) | (V > zero) | (W > zero));

@@ -41,7 +41,7 @@ struct TraceOptions {
   // lanes (the same hits) where traces_in_lanes says so; false: one ray at a time.
   bool lanes = true;
   // trace_closest and trace_any with the short stack and the fast path: kPacketRays consecutive
-  // rays at a time as one packet (the same hits) where packets_supported(), before lanes.
+  // rays at a time as one packet (the same hits) where packets_supported(), in place of lanes.
   bool packets = false;
 };
 

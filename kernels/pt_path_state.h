@@ -96,24 +96,23 @@ KD_INLINE uint pt_path_key(const PtPath* path, KD_GLOBAL const PtRenderParams* p
 #define PT_MAX_ALPHA_LAYERS 64
 #endif
 
-KD_INLINE void pt_path_begin(PtPath* path, KD_GLOBAL const PtRenderParams* params, uint pixel, uint sample) {
-  uint x = pixel % params->width, y = pixel / params->width;
-  path->sample_hash = pt_sample_hash(params->sampler, params->seed, pixel, sample);
-  /* the camera's pair, read as the first values of a "bounce" that starts at dimension 0 */
-  const PtBounceSamples camera = pt_bounce_samples(params->sampler, path->sample_hash, sample, PT_DIM_CAMERA_X);
-  float2 jitter = pt_bounce_sample2(&camera, 0u);
-  float sx = 2.0f * ((float)x + jitter.x) / (float)params->width - 1.0f;
-  float sy = 1.0f - 2.0f * ((float)y + jitter.y) / (float)params->height;
-  float3 forward = vload3(0, params->cam_forward), right = vload3(0, params->cam_right);
-  float3 up = vload3(0, params->cam_up);
-  path->origin = vload3(0, params->cam_origin);
-  path->direction = kd_normalize(forward + sx * right + sy * up);
-#ifdef KD_FEATURE_ORTHOGRAPHIC
-  if (PT_USES(params, PT_FEATURE_ORTHOGRAPHIC)) {
-    path->origin = path->origin + sx * right + sy * up;
-    path->direction = forward;
-  }
-#endif
+/* The camera's film point of a sample at (px, py) in pixels (the pixel's corner plus the
+ * sample's jitter), as sx, sy in [-1, 1] across the film, and the perspective camera's ray
+ * direction through it: lane functions, written once for one path and for the host's lanes
+ * (librender/src/path_lanes.h). */
+KD_LANE_FN void pt_film_point(KD_GLOBAL const PtRenderParams* params, kd_lane px, kd_lane py, kd_lane* sx, kd_lane* sy) {
+  *sx = 2.0f * px / (float)params->width - 1.0f;
+  *sy = 1.0f - 2.0f * py / (float)params->height;
+}
+KD_LANE_FN kd_lane3 pt_perspective_direction(KD_GLOBAL const PtRenderParams* params, kd_lane sx, kd_lane sy) {
+  const kd_lane3 forward = KD_LANE3(params->cam_forward[0], params->cam_forward[1], params->cam_forward[2]);
+  const kd_lane3 right = KD_LANE3(params->cam_right[0], params->cam_right[1], params->cam_right[2]);
+  const kd_lane3 up = KD_LANE3(params->cam_up[0], params->cam_up[1], params->cam_up[2]);
+  return kd_normalize(forward + sx * right + sy * up);
+}
+
+/* A path's state at its start, but for its camera ray (pt_path_begin). */
+KD_INLINE void pt_path_start(PtPath* path, uint pixel, uint sample, uint sample_hash) {
   path->throughput = kd_splat3(1.0f);
   path->radiance = kd_splat3(0.0f);
   path->albedo = kd_splat3(0.0f);
@@ -122,9 +121,29 @@ KD_INLINE void pt_path_begin(PtPath* path, KD_GLOBAL const PtRenderParams* param
   path->bsdf_pdf = 0.0f;
   path->pixel = pixel;
   path->sample = sample;
+  path->sample_hash = sample_hash;
   path->bounce = 0;
   path->alive = 1;
   path->shadow_pending = 0;
+}
+
+KD_INLINE void pt_path_begin(PtPath* path, KD_GLOBAL const PtRenderParams* params, uint pixel, uint sample) {
+  uint x = pixel % params->width, y = pixel / params->width;
+  pt_path_start(path, pixel, sample, pt_sample_hash(params->sampler, params->seed, pixel, sample));
+  /* the camera's pair, read as the first values of a "bounce" that starts at dimension 0 */
+  const PtBounceSamples camera = pt_bounce_samples(params->sampler, path->sample_hash, sample, PT_DIM_CAMERA_X);
+  float2 jitter = pt_bounce_sample2(&camera, 0u);
+  float sx, sy;
+  pt_film_point(params, (float)x + jitter.x, (float)y + jitter.y, &sx, &sy);
+  path->origin = vload3(0, params->cam_origin);
+  path->direction = pt_perspective_direction(params, sx, sy);
+#ifdef KD_FEATURE_ORTHOGRAPHIC
+  if (PT_USES(params, PT_FEATURE_ORTHOGRAPHIC)) {
+    float3 right = vload3(0, params->cam_right), up = vload3(0, params->cam_up);
+    path->origin = path->origin + sx * right + sy * up;
+    path->direction = vload3(0, params->cam_forward);
+  }
+#endif
 }
 
 #endif /* PT_PATH_STATE_H */

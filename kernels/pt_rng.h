@@ -115,10 +115,22 @@ KD_INLINE kd_u32 pt_sobol_reversed(kd_u32 index, kd_u32 dimension) {
 
 /* The part of a value's hashes that depends on the sample alone: for sobol on (seed, pixel),
  * for independent on (seed, pixel, index). A path computes it once (PtPath.sample_hash) rather
- * than once per value; pt_hashed_bits then gives the same bits as pt_sample_bits. */
+ * than once per value; pt_hashed_bits then gives the same bits as pt_sample_bits. Steps on a
+ * variable `hash` of one path's or of 8 paths' (librender/src/path_lanes.h), as the mixers above. */
+#define PT_SAMPLE_HASH_STEPS(hash, sampler, seed, pixel, index) \
+  if ((sampler) == PT_SAMPLER_INDEPENDENT) {                    \
+    hash = pt_hash32((seed) ^ 0x9e3779b9u) ^ (pixel);           \
+    PT_HASH32_STEPS(hash);                                      \
+    hash ^= (index);                                            \
+    PT_HASH32_STEPS(hash);                                      \
+  } else {                                                      \
+    hash = pt_hash32((seed) ^ 0x5851f42du) ^ (pixel);           \
+    PT_HASH32_STEPS(hash);                                      \
+  }
 KD_INLINE kd_u32 pt_sample_hash(kd_u32 sampler, kd_u32 seed, kd_u32 pixel, kd_u32 index) {
-  if (sampler == PT_SAMPLER_INDEPENDENT) return pt_hash32(pt_hash32(pt_hash32(seed ^ 0x9e3779b9u) ^ pixel) ^ index);
-  return pt_hash32(pt_hash32(seed ^ 0x5851f42du) ^ pixel);
+  kd_u32 hash;
+  PT_SAMPLE_HASH_STEPS(hash, sampler, seed, pixel, index);
+  return hash;
 }
 
 /* The seeds of one dimension pair of one pixel: the index shuffle and the two coordinates' scrambles. */

@@ -537,17 +537,8 @@ inline void begin_in_lanes(Paths& ps, int count, const PtRenderParams* params, c
     x[l] = (float)(pixels[l] % params->width), y[l] = (float)(pixels[l] / params->width);
   }
   const UintVector pixel_lanes = (UintVector)load(pixel).v, sample_lanes = (UintVector)load(sample).v;
-  // pt_sample_hash
   UintVector sample_hash;
-  if (params->sampler == PT_SAMPLER_INDEPENDENT) {
-    sample_hash = pt_hash32(params->seed ^ 0x9e3779b9u) ^ pixel_lanes;
-    PT_HASH32_STEPS(sample_hash);
-    sample_hash ^= sample_lanes;
-    PT_HASH32_STEPS(sample_hash);
-  } else {
-    sample_hash = pt_hash32(params->seed ^ 0x5851f42du) ^ pixel_lanes;
-    PT_HASH32_STEPS(sample_hash);
-  }
+  PT_SAMPLE_HASH_STEPS(sample_hash, params->sampler, params->seed, pixel_lanes, sample_lanes);
   UintVector reversed_index = sample_lanes;
   PT_LANES_REVERSE_BITS(reversed_index);
   auto value = [&](uint32_t dimension) {
@@ -555,13 +546,10 @@ inline void begin_in_lanes(Paths& ps, int count, const PtRenderParams* params, c
     PT_HASHED_BITS_IN_LANES(bits, params->sampler, sample_hash, reversed_index, PT_LANES_SPLAT(dimension));
     return Float8((FloatVector)_mm256_cvtepi32_ps((__m256i)(bits >> 8))) * (1.0f / 16777216.0f);  // pt_bits_to_unit
   };
-  const Float8 sx = 2.0f * (load(x) + value(PT_DIM_CAMERA_X)) / (float)params->width - 1.0f;
-  const Float8 sy = 1.0f - 2.0f * (load(y) + value(PT_DIM_CAMERA_Y)) / (float)params->height;
-  auto splat3 = [](const float* v) { return Float8x3{Float8(v[0]), Float8(v[1]), Float8(v[2])}; };
-  const Float8x3 direction =
-      kd_normalize(splat3(params->cam_forward) + sx * splat3(params->cam_right) + sy * splat3(params->cam_up));
-  store3(ps.dx, ps.dy, ps.dz, direction);
-  store3(ps.ox, ps.oy, ps.oz, splat3(params->cam_origin));
+  Float8 sx, sy;
+  pt_film_point(params, load(x) + value(PT_DIM_CAMERA_X), load(y) + value(PT_DIM_CAMERA_Y), &sx, &sy);
+  store3(ps.dx, ps.dy, ps.dz, pt_perspective_direction(params, sx, sy));
+  store3(ps.ox, ps.oy, ps.oz, Float8x3{params->cam_origin[0], params->cam_origin[1], params->cam_origin[2]});
   store3(ps.tx, ps.ty, ps.tz, Float8x3{1.0f, 1.0f, 1.0f});
   store3(ps.rx, ps.ry, ps.rz, Float8x3{0.0f, 0.0f, 0.0f});
   store(ps.bsdf_pdf, Float8(0.0f));
@@ -570,20 +558,9 @@ inline void begin_in_lanes(Paths& ps, int count, const PtRenderParams* params, c
   store(reinterpret_cast<int32_t*>(ps.sample), Int8((IntVector)sample_lanes));
   for (int l = 0; l < count; ++l) {
     PtPath& path = ps.path[l];
+    pt_path_start(&path, pixels[l], samples[l], ps.sample_hash[l]);
     path.origin = KD_FLOAT3(ps.ox[l], ps.oy[l], ps.oz[l]);
     path.direction = KD_FLOAT3(ps.dx[l], ps.dy[l], ps.dz[l]);
-    path.throughput = kd_splat3(1.0f);
-    path.radiance = kd_splat3(0.0f);
-    path.albedo = kd_splat3(0.0f);
-    path.normal = kd_splat3(0.0f);
-    path.depth = 0.0f;
-    path.bsdf_pdf = 0.0f;
-    path.pixel = pixels[l];
-    path.sample = samples[l];
-    path.sample_hash = ps.sample_hash[l];
-    path.bounce = 0;
-    path.alive = 1;
-    path.shadow_pending = 0;
   }
   ps.alive |= count >= kLanes ? 0xff : (1 << count) - 1;
 }

@@ -241,5 +241,26 @@ TEST_F(KdCli, KdtraceNoLanesWritesTheSameHits) {
   EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(HitRecord)), 0);
 }
 
+// --packets traces camera rays 8 at a time as one packet on the host, says so in --json, and writes
+// the same hits; an OpenCL device has no packets.
+TEST_F(KdCli, KdtracePacketsWriteTheSameHits) {
+  ASSERT_EQ(run("kdbuild", path("room.kdscene") + " " + path("room.kdtree") + " --quiet").exit_code, 0);
+  const std::string trace =
+      path("room.kdscene") + " " + path("room.kdtree") + " --generate camera --width 64 --height 48 --json";
+  const ToolRun packets = run("kdtrace", trace + " --packets --hits " + path("packets.bin"));
+  const ToolRun one_ray = run("kdtrace", trace + " --no-lanes --hits " + path("one.bin"));
+  ASSERT_EQ(packets.exit_code, 0) << packets.err;
+  ASSERT_EQ(one_ray.exit_code, 0) << one_ray.err;
+  if (packets_supported()) {
+    EXPECT_EQ(nlohmann::json::parse(packets.out).at("variant"), "cpu-8-ray-packets-in-avx2");
+  }
+  const std::vector<HitRecord> a = read_hits(path("packets.bin")), b = read_hits(path("one.bin"));
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(HitRecord)), 0);
+  const ToolRun opencl = run("kdtrace", trace + " --packets --device cpu");
+  EXPECT_EQ(opencl.exit_code, 2);
+  EXPECT_NE(opencl.err.find("--packets is for --device host"), std::string::npos) << opencl.err;
+}
+
 }  // namespace
 }  // namespace kdray

@@ -628,7 +628,7 @@ inline void trace_shadow_rays(Paths& ps, const PtSceneData* scene, const PtRende
 // run close together, so a packet traces them 2-3 times as fast as one at a time (bench/LOG.md,
 // "Packets of eight rays"); the later rays of the paths run apart and are traced one at a time.
 struct FirstSegments {
-  Paths paths;  // the paths that go on after their first segment: paths.alive
+  Paths paths{};  // the paths that go on after their first segment: paths.alive
   uint32_t next_pixel, end_pixel, next_sample = 0;
   uint64_t rays = 0;
 
@@ -669,7 +669,9 @@ inline uint64_t render(const PtSceneData* scene, const PtRenderParams* params, u
   const kdray::TraversalArrays arrays{scene->kd.nodes, scene->kd.leaf_blocks,
                                       {scene->kd.bounds_min[0], scene->kd.bounds_min[1], scene->kd.bounds_min[2]},
                                       {scene->kd.bounds_max[0], scene->kd.bounds_max[1], scene->kd.bounds_max[2]}};
-  Paths ps;
+  // Zeroed: a lane that has no path still takes part in the lanes' integer arithmetic, which its
+  // leftover bits could make overflow (UBSan).
+  Paths ps{};
   FirstSegments first;
   first.next_pixel = begin_pixel;
   first.end_pixel = end_pixel;

@@ -13,13 +13,7 @@
 #include <algorithm>
 #include <cstdint>
 
-// Everything between here and the matching pop is compiled for AVX2 (GCC's pragma; clang's).
-#ifdef __clang__
-#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
-#else
-#pragma GCC push_options
-#pragma GCC target("avx2")
-#endif
+#include "avx2_functions_begin.h"
 
 namespace kdray::detail {
 namespace lanes {
@@ -39,11 +33,7 @@ void closest_in_lanes(const TraversalArrays& arrays, const RayRecord* rays, HitR
 
 }  // namespace kdray::detail
 
-#ifdef __clang__
-#pragma clang attribute pop
-#else
-#pragma GCC pop_options
-#endif
+#include "avx2_functions_end.h"
 
 namespace kdray::detail {
 

@@ -26,13 +26,7 @@
 #include <cstdint>
 #include <cstring>
 
-// Everything between here and the matching pop is compiled for AVX2 (GCC's pragma; clang's).
-#ifdef __clang__
-#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
-#else
-#pragma GCC push_options
-#pragma GCC target("avx2")
-#endif
+#include "avx2_functions_begin.h"
 
 namespace kdray::detail {
 namespace packets {
@@ -331,8 +325,4 @@ void any_in_packets(const TraversalArrays& arrays, const RayRecord* rays, uint8_
 
 }  // namespace kdray::detail
 
-#ifdef __clang__
-#pragma clang attribute pop
-#else
-#pragma GCC pop_options
-#endif
+#include "avx2_functions_end.h"

@@ -222,6 +222,13 @@ TEST_F(KdCli, KdtraceRejectsStaleTreesAndBadRayFiles) {
   EXPECT_EQ(run("kdtrace", path("room.kdscene") + " " + path("room.kdtree") + " --generate random --device all").exit_code, 2);
 }
 
+// Two kdtrace hit files of the same rays hold the same bytes.
+void expect_same_hit_files(const std::string& first, const std::string& second) {
+  const std::vector<HitRecord> a = read_hits(first), b = read_hits(second);
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(HitRecord)), 0);
+}
+
 // --no-lanes traces one ray at a time on the host, says so in --json, and writes the same hits.
 TEST_F(KdCli, KdtraceNoLanesWritesTheSameHits) {
   ASSERT_EQ(run("kdbuild", path("room.kdscene") + " " + path("room.kdtree") + " --quiet").exit_code, 0);
@@ -236,9 +243,7 @@ TEST_F(KdCli, KdtraceNoLanesWritesTheSameHits) {
   EXPECT_TRUE(variant == "cpu-one-ray-per-thread+prefetch" ||
               variant == "cpu-16-rays-per-thread-in-avx2-lanes+prefetch")
       << variant;
-  const std::vector<HitRecord> a = read_hits(path("chosen.bin")), b = read_hits(path("one.bin"));
-  ASSERT_EQ(a.size(), b.size());
-  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(HitRecord)), 0);
+  expect_same_hit_files(path("chosen.bin"), path("one.bin"));
 }
 
 // --packets traces camera rays 8 at a time as one packet on the host, says so in --json, and writes
@@ -254,9 +259,7 @@ TEST_F(KdCli, KdtracePacketsWriteTheSameHits) {
   if (packets_supported()) {
     EXPECT_EQ(nlohmann::json::parse(packets.out).at("variant"), "cpu-8-ray-packets-in-avx2");
   }
-  const std::vector<HitRecord> a = read_hits(path("packets.bin")), b = read_hits(path("one.bin"));
-  ASSERT_EQ(a.size(), b.size());
-  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(HitRecord)), 0);
+  expect_same_hit_files(path("packets.bin"), path("one.bin"));
   const ToolRun opencl = run("kdtrace", trace + " --packets --device cpu");
   EXPECT_EQ(opencl.exit_code, 2);
   EXPECT_NE(opencl.err.find("--packets is for --device host"), std::string::npos) << opencl.err;

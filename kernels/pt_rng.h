@@ -225,32 +225,58 @@ inline pt_lanes_u32 pt_lanes_reverse_bits(pt_lanes_u32 x) {
 /* pt_hashed_bits of each lane's (sample_hash, index, dimension) into the lanes `bits`, from the
  * index with its bits reversed (pt_reverse_bits): the 8 values of one bounce
  * (pt_bounce_bits_in_lanes), or one value of 8 paths (the host's paths in lanes,
- * librender/src/path_lanes.h). A statement macro, as the steps above, so that no function passes
+ * librender/src/path_lanes.h). Statement macros, as the steps above, so that no function passes
  * 32-byte vectors where the target has no AVX. */
-#define PT_HASHED_BITS_IN_LANES(bits, sampler, sample_hash, reversed_index, dimension)      \
+#define PT_HASHED_BITS_IN_LANES(bits, sampler, sample_hash, reversed_index, dimension)        \
+  do {                                                                                     \
+    if ((sampler) == PT_SAMPLER_INDEPENDENT) {                                             \
+      bits = (sample_hash) ^ (dimension);                                                  \
+      PT_HASH32_STEPS(bits);                                                               \
+    } else {                                                                               \
+      pt_lanes_u32 pair_seed, shuffled;                                                    \
+      PT_SOBOL_PAIR_IN_LANES(pair_seed, shuffled, sample_hash, reversed_index, dimension); \
+      PT_SCRAMBLED_SOBOL_IN_LANES(bits, pair_seed, shuffled, (dimension) & 1u);            \
+    }                                                                                      \
+  } while (0)
+/* The same for both dimensions of each lane's pair that starts at even `dimension`
+ * (pt_hashed_bits2): the pair's seed and shuffled index computed once for the two. */
+#define PT_HASHED_BITS2_IN_LANES(bits0, bits1, sampler, sample_hash, reversed_index, dimension) \
+  do {                                                                                      \
+    if ((sampler) == PT_SAMPLER_INDEPENDENT) {                                              \
+      bits0 = (sample_hash) ^ (dimension);                                                  \
+      PT_HASH32_STEPS(bits0);                                                               \
+      bits1 = (sample_hash) ^ ((dimension) + 1u);                                           \
+      PT_HASH32_STEPS(bits1);                                                               \
+    } else {                                                                                \
+      pt_lanes_u32 pair_seed, shuffled;                                                     \
+      PT_SOBOL_PAIR_IN_LANES(pair_seed, shuffled, sample_hash, reversed_index, dimension);  \
+      PT_SCRAMBLED_SOBOL_IN_LANES(bits0, pair_seed, shuffled, PT_LANES_SPLAT(0u));          \
+      PT_SCRAMBLED_SOBOL_IN_LANES(bits1, pair_seed, shuffled, PT_LANES_SPLAT(1u));          \
+    }                                                                                       \
+  } while (0)
+/* The sobol sampler's parts of the above: the pair's seed (pt_pair_seed) and the index shuffled
+ * (pt_shuffled_index) into `pair_seed` and `shuffled`; then coordinate `coordinate` (0 or 1 in
+ * each lane) of the shuffled point, scrambled (pt_scrambled_sobol), into `bits`. */
+#define PT_SOBOL_PAIR_IN_LANES(pair_seed, shuffled, sample_hash, reversed_index, dimension) \
   do {                                                                                   \
-    if ((sampler) == PT_SAMPLER_INDEPENDENT) {                                           \
-      bits = (sample_hash) ^ (dimension);                                                \
-      PT_HASH32_STEPS(bits);                                                             \
-    } else {                                                                             \
-      pt_lanes_u32 pair_seed = (sample_hash) ^ ((dimension) >> 1);                       \
-      PT_HASH32_STEPS(pair_seed);                                                        \
-      /* pt_shuffled_index */                                                            \
-      pt_lanes_u32 shuffle_seed = pair_seed ^ 0x68e31da4u;                               \
-      PT_HASH32_STEPS(shuffle_seed);                                                     \
-      pt_lanes_u32 shuffled = (reversed_index);                                          \
-      PT_LAINE_KARRAS_STEPS(shuffled, shuffle_seed);                                     \
-      PT_LANES_REVERSE_BITS(shuffled);                                                   \
-      /* pt_scrambled_sobol: coordinate 0 in the even dimensions, 1 in the odd ones */   \
-      const pt_lanes_u32 coordinate = (dimension) & 1u;                                  \
-      pt_lanes_u32 sobol1 = shuffled;                                                    \
-      PT_SOBOL1_REVERSED_STEPS(sobol1);                                                  \
-      bits = shuffled ^ ((sobol1 ^ shuffled) & (0u - coordinate));                       \
-      pt_lanes_u32 scramble_seed = pair_seed ^ (0xb5297a4du + coordinate);               \
-      PT_HASH32_STEPS(scramble_seed);                                                    \
-      PT_LAINE_KARRAS_STEPS(bits, scramble_seed);                                        \
-      PT_LANES_REVERSE_BITS(bits);                                                       \
-    }                                                                                    \
+    pair_seed = (sample_hash) ^ ((dimension) >> 1);                                      \
+    PT_HASH32_STEPS(pair_seed);                                                          \
+    pt_lanes_u32 shuffle_seed = pair_seed ^ 0x68e31da4u;                                 \
+    PT_HASH32_STEPS(shuffle_seed);                                                       \
+    shuffled = (reversed_index);                                                         \
+    PT_LAINE_KARRAS_STEPS(shuffled, shuffle_seed);                                       \
+    PT_LANES_REVERSE_BITS(shuffled);                                                     \
+  } while (0)
+#define PT_SCRAMBLED_SOBOL_IN_LANES(bits, pair_seed, shuffled, coordinate)              \
+  do {                                                                               \
+    const pt_lanes_u32 sobol_coordinate = (coordinate);                              \
+    pt_lanes_u32 sobol1 = (shuffled);                                                \
+    PT_SOBOL1_REVERSED_STEPS(sobol1);                                                \
+    bits = (shuffled) ^ ((sobol1 ^ (shuffled)) & (0u - sobol_coordinate));           \
+    pt_lanes_u32 scramble_seed = (pair_seed) ^ (0xb5297a4du + sobol_coordinate);     \
+    PT_HASH32_STEPS(scramble_seed);                                                  \
+    PT_LAINE_KARRAS_STEPS(bits, scramble_seed);                                      \
+    PT_LANES_REVERSE_BITS(bits);                                                     \
   } while (0)
 KD_INLINE PtBounceBits pt_bounce_bits_in_lanes(kd_u32 sampler, kd_u32 sample_hash, kd_u32 index, kd_u32 first_dimension) {
   pt_lanes_u32 bits;

@@ -73,6 +73,11 @@ inline Float8x3 gather3(const float* base, Int8 record, int words, int first, Ma
           gather(base + first + 2, index, lanes)};
 }
 
+// pt_bits_to_unit of each lane's bits.
+inline Float8 bits_to_unit(UintVector bits) {
+  return Float8((FloatVector)_mm256_cvtepi32_ps((__m256i)(bits >> 8))) * (1.0f / 16777216.0f);
+}
+
 // pt_corner of each lane's triangle, in the lanes of the mask (0 in the others).
 inline Float8x3 corners(const float* triangle_vertices, Int8 triangle, Mask8 lanes, int corner) {
   return gather3(triangle_vertices, triangle, KD_TRIANGLE_FLOATS, 3 * corner, lanes);
@@ -460,9 +465,16 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
   auto value = [&](uint32_t dimension) {
     UintVector bits;
     PT_HASHED_BITS_IN_LANES(bits, params->sampler, sample_hash, reversed_index, first_dimension + dimension);
-    return Float8((FloatVector)_mm256_cvtepi32_ps((__m256i)(bits >> 8))) * (1.0f / 16777216.0f);  // pt_bits_to_unit
+    return bits_to_unit(bits);
   };
-  const Float8 bsdf_u = value(PT_DIM_BSDF_U), bsdf_v = value(PT_DIM_BSDF_V);
+  // the two values of the pair of dimensions that starts at even `dimension` (sharing its hashes)
+  auto pair = [&](uint32_t dimension, Float8* first, Float8* second) {
+    UintVector bits0, bits1;
+    PT_HASHED_BITS2_IN_LANES(bits0, bits1, params->sampler, sample_hash, reversed_index, first_dimension + dimension);
+    *first = bits_to_unit(bits0), *second = bits_to_unit(bits1);
+  };
+  Float8 bsdf_u, bsdf_v;
+  pair(PT_DIM_BSDF_U, &bsdf_u, &bsdf_v);
   const Mask8 roulette_lanes = active & (bounce >= (int32_t)PT_ROULETTE_START);
   if (kd_any(roulette_lanes)) {
     const Float8 survive = fmin(sqrt(pt_max3(beta)), 1.0f);
@@ -478,13 +490,16 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
     const Float8 u = params->select_triangles < 1.0f ? value(PT_DIM_LIGHT_TYPE) : Float8(0.0f);
     const Mask8 triangles = lit & (u < params->select_triangles);
     if (kd_any(triangles)) {
-      next_event_on_triangles(ps, scene, params, triangles, value(PT_DIM_LIGHT_PICK), value(PT_DIM_LIGHT_V), p, n,
-                              ng_facing, wo, bsdf, beta);
+      Float8 light_pick, light_v;
+      pair(PT_DIM_LIGHT_PICK, &light_pick, &light_v);
+      next_event_on_triangles(ps, scene, params, triangles, light_pick, light_v, p, n, ng_facing, wo, bsdf, beta);
     }
     const Mask8 others = lit & !triangles;
     if (kd_any(others)) {
-      next_event_on_other_lights(ps, scene, params, others, u - params->select_triangles, value(PT_DIM_ENV_U),
-                                 value(PT_DIM_ENV_V), p, n, ng_facing, wo, bsdf, beta);
+      Float8 env_u, env_v;
+      pair(PT_DIM_ENV_U, &env_u, &env_v);
+      next_event_on_other_lights(ps, scene, params, others, u - params->select_triangles, env_u, env_v, p, n,
+                                 ng_facing, wo, bsdf, beta);
     }
   }
   // the BSDF sample (the glTF material's lobe value drawn only where a lane has it)
@@ -541,13 +556,11 @@ inline void begin_in_lanes(Paths& ps, int count, const PtRenderParams* params, c
   PT_SAMPLE_HASH_STEPS(sample_hash, params->sampler, params->seed, pixel_lanes, sample_lanes);
   UintVector reversed_index = sample_lanes;
   PT_LANES_REVERSE_BITS(reversed_index);
-  auto value = [&](uint32_t dimension) {
-    UintVector bits;
-    PT_HASHED_BITS_IN_LANES(bits, params->sampler, sample_hash, reversed_index, PT_LANES_SPLAT(dimension));
-    return Float8((FloatVector)_mm256_cvtepi32_ps((__m256i)(bits >> 8))) * (1.0f / 16777216.0f);  // pt_bits_to_unit
-  };
+  UintVector camera_x, camera_y;
+  PT_HASHED_BITS2_IN_LANES(camera_x, camera_y, params->sampler, sample_hash, reversed_index,
+                           PT_LANES_SPLAT(PT_DIM_CAMERA_X));
   Float8 sx, sy;
-  pt_film_point(params, load(x) + value(PT_DIM_CAMERA_X), load(y) + value(PT_DIM_CAMERA_Y), &sx, &sy);
+  pt_film_point(params, load(x) + bits_to_unit(camera_x), load(y) + bits_to_unit(camera_y), &sx, &sy);
   store3(ps.dx, ps.dy, ps.dz, pt_perspective_direction(params, sx, sy));
   store3(ps.ox, ps.oy, ps.oz, Float8x3{params->cam_origin[0], params->cam_origin[1], params->cam_origin[2]});
   store3(ps.tx, ps.ty, ps.tz, Float8x3{1.0f, 1.0f, 1.0f});

@@ -14,8 +14,7 @@
 // with 8-float lanes (lane8.h), so each lane computes what pt_path_shade computes for its path,
 // bit for bit, and the film is the scalar path tracer's and the kernel's
 // (tests/render/cpu_integrator.h compares them). A path's start is computed in lanes for the eight
-// paths begun together (begin_in_lanes); the light pick's search and the film sums stay scalar,
-// lane by lane.
+// paths begun together (begin_in_lanes); the film sums stay scalar, lane by lane.
 //
 // Compiled into the x86-64-v3 build of render_host_pixels.cpp, inside its namespace after the
 // device code, whose functions it calls.
@@ -232,28 +231,45 @@ inline Float8x3 bsdf_sample(const LaneBsdf& m, Float8x3 n, Float8x3 wo, Float8 u
   return wi;
 }
 
+// pt_pick_light for the lanes of `lanes`: the triangles picked, and each lane's u made its
+// position inside its entry's cdf interval. Each lane bisects step for step as pt_pick_light does
+// (so it ends on the same entry whatever the cdf holds), the entries read by gathers: the search
+// lane by lane mispredicted its branch about every other step.
+inline Int8 pick_lights(const PtLight* lights, uint32_t count, Mask8 lanes, Float8* u) {
+  static_assert(sizeof(PtLight) == 8 && KD_OFFSETOF(PtLight, triangle) == 0 && KD_OFFSETOF(PtLight, cdf) == 4,
+                "PtLight: 2 words triangle, cdf");
+  const float* cdf = reinterpret_cast<const float*>(lights) + 1;
+  IntVector lo = IntVector{}, hi = IntVector{} + (int32_t)(count - 1);
+  for (;;) {
+    const Mask8 searching = lanes & Mask8{lo < hi};
+    if (!kd_any(searching)) break;
+    const IntVector mid = (IntVector)((UintVector)(lo + hi) >> 1);
+    const IntVector below = (*u < gather(cdf, Int8(mid * 2), searching)).m;
+    hi = searching.m & below ? mid : hi;
+    lo = searching.m & ~below ? mid + 1 : lo;
+  }
+  const Mask8 past_first = lanes & Mask8{lo > 0};
+  const Float8 below = gather(cdf, Int8((lo - 1) * 2), past_first);  // 0 in the first entry's lanes
+  const Float8 width = gather(cdf, Int8(lo * 2), lanes) - below;
+  *u = kd_select(width > 0.0f, fmin((*u - below) / width, 0x1.fffffep-1f), Float8(0.0f));
+  return gather(reinterpret_cast<const int32_t*>(lights), Int8(lo * 2), lanes);
+}
+
 // pt_next_event for the lanes of `active`, shading point p (normal n, facing geometric normal
 // ng_facing, BSDF m seen from wo, throughput beta), with the bounce's light-pick and light values:
 // the shadow rays into ps.
 inline void next_event_on_triangles(Paths& ps, const PtSceneData* scene, const PtRenderParams* params, Mask8 active,
                                     Float8 light_pick, Float8 light_v, Float8x3 p, Float8x3 n, Float8x3 ng_facing,
                                     Float8x3 wo, const LaneBsdf& m, Float8x3 beta) {
-  // the light pick's search, lane by lane
-  alignas(32) float light_u[kLanes];
-  store(light_u, light_pick);
-  alignas(32) int32_t light_triangle[kLanes] = {};
-  const int picking = bits(active);
-  for (int l = 0; l < kLanes; ++l)
-    if (picking >> l & 1) light_triangle[l] = (int32_t)pt_pick_light(scene->lights, params->light_count, &light_u[l]);
+  Float8 light_u_picked = light_pick;
+  const Int8 light = pick_lights(scene->lights, params->light_count, active, &light_u_picked);
   Mask8 ok = active;
-  const Int8 light = load(light_triangle);
   const Float8x3 q0 = corners(scene->triangle_vertices, light, ok, 0);
   const Float8x3 q1 = corners(scene->triangle_vertices, light, ok, 1);
   const Float8x3 q2 = corners(scene->triangle_vertices, light, ok, 2);
   const Float8x3 scaled_normal = kd_cross(q1 - q0, q2 - q0);
   const Float8 twice_area = kd_length(scaled_normal);
   const Float8x3 light_normal = scaled_normal / twice_area;
-  const Float8 light_u_picked = load(light_u);
   Float8x3 a, b, c;
   const Float8 solid_angle = pt_spherical_solid_angle(p, q0, q1, q2, &a, &b, &c);
   const Mask8 spherical = solid_angle > 0.0f;

@@ -114,6 +114,28 @@ TEST(CpuIntegrator, CornellBoxWithGltfMaterialsInLanesMatchesTheKernelBitForBit)
             32u * 32u / 4);
 }
 
+// Many triangle lights of unequal power: of the Cornell box's diffuse triangles, two in three made
+// emitters of two strengths, so that the lanes' light pick (path_lanes.h, pick_lights) bisects a
+// cdf of about twenty unequal entries, each lane taking its own number of steps.
+TEST(CpuIntegrator, CornellBoxWithManyUnequalLightsInLanesMatchesTheKernelBitForBit) {
+  Scene scene = import_scene(cornell_obj(), ImportOptions{});
+  Material bright, dim;
+  bright.type = dim.type = MaterialType::Emissive;
+  bright.base_color = dim.base_color = {0.5f, 0.5f, 0.5f};
+  bright.emission = {4.0f, 3.0f, 2.0f};
+  dim.emission = {0.3f, 0.5f, 0.7f};
+  share_diffuse_triangles(scene, {bright, dim});
+  scene.emissive_triangles.clear();
+  for (uint32_t t = 0; t < scene.triangle_count(); ++t)
+    if (scene.materials[scene.material_ids[t]].type == MaterialType::Emissive) scene.emissive_triangles.push_back(t);
+  ASSERT_GT(scene.emissive_triangles.size(), 16u);
+  RenderSettings settings = cornell_settings();
+  settings.width = settings.height = 32;
+  settings.spp = 8;
+  settings.max_bounces = 3;
+  EXPECT_GT(expect_host_matches_kernel(scene, settings, {"-DKD_FEATURE_EMISSION"}, 2), 32u * 32u / 2);
+}
+
 // Every kind of light at once in lanes: the Cornell box's ceiling light, an environment seen
 // through the open front and a point light inside, so that the 8 lanes of a step pick different
 // kinds (triangle lights in lanes, the others sampled lane by lane and their shadow rays set up in

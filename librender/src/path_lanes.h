@@ -77,9 +77,55 @@ inline Float8 bits_to_unit(UintVector bits) {
   return Float8((FloatVector)_mm256_cvtepi32_ps((__m256i)(bits >> 8))) * (1.0f / 16777216.0f);
 }
 
-// pt_corner of each lane's triangle, in the lanes of the mask (0 in the others).
-inline Float8x3 corners(const float* triangle_vertices, Int8 triangle, Mask8 lanes, int corner) {
-  return gather3(triangle_vertices, triangle, KD_TRIANGLE_FLOATS, 3 * corner, lanes);
+// The words of the 8 lanes' hits (t, triangle, u, v), in the lanes of the mask (0 in the others):
+// two records a load, turned into lanes by a transpose in each half.
+inline void hit_lanes(const HitRecord* hits, Mask8 lanes, Float8* t, Int8* triangle, Float8* u, Float8* v) {
+  const float* words = reinterpret_cast<const float*>(hits);
+  // records l and l + 4 in one register
+  __m256 row[4];
+  for (int l = 0; l < 4; ++l)
+    row[l] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(words + 4 * l)), _mm_loadu_ps(words + 4 * (l + 4)), 1);
+  const __m256 t_triangle01 = _mm256_unpacklo_ps(row[0], row[1]), u_v01 = _mm256_unpackhi_ps(row[0], row[1]);
+  const __m256 t_triangle23 = _mm256_unpacklo_ps(row[2], row[3]), u_v23 = _mm256_unpackhi_ps(row[2], row[3]);
+  auto in_lanes = [&](__m256 x) { return (FloatVector)_mm256_and_ps(x, (__m256)lanes.m); };
+  *t = Float8(in_lanes(_mm256_shuffle_ps(t_triangle01, t_triangle23, 0x44)));
+  *triangle = Int8((IntVector)in_lanes(_mm256_shuffle_ps(t_triangle01, t_triangle23, 0xee)));
+  *u = Float8(in_lanes(_mm256_shuffle_ps(u_v01, u_v23, 0x44)));
+  *v = Float8(in_lanes(_mm256_shuffle_ps(u_v01, u_v23, 0xee)));
+}
+
+// The three corners (pt_corner) of each lane's triangle, in the lanes of the mask (0 in the
+// others): each lane's first 8 floats read in one load and turned into lanes by a transpose, the
+// ninth gathered; eight gathers cost more on this kind of CPU than the loads and shuffles.
+inline void triangle_corners(const float* triangle_vertices, Int8 triangle, Mask8 lanes, Float8x3* p0, Float8x3* p1,
+                             Float8x3* p2) {
+  static_assert(KD_TRIANGLE_FLOATS == 9, "a triangle: three corners of three floats");
+  alignas(32) int32_t record[kLanes];
+  store(record, triangle * (int32_t)KD_TRIANGLE_FLOATS);
+  const int reading = bits(lanes);
+  __m256 row[kLanes];
+  for (int l = 0; l < kLanes; ++l)
+    row[l] = reading >> l & 1 ? _mm256_loadu_ps(triangle_vertices + record[l]) : _mm256_setzero_ps();
+  __m256 pair[kLanes], quad[kLanes];
+  for (int l = 0; l < kLanes; l += 2) {
+    pair[l] = _mm256_unpacklo_ps(row[l], row[l + 1]);
+    pair[l + 1] = _mm256_unpackhi_ps(row[l], row[l + 1]);
+  }
+  for (int l = 0; l < kLanes; l += 4) {
+    quad[l] = _mm256_shuffle_ps(pair[l], pair[l + 2], 0x44);
+    quad[l + 1] = _mm256_shuffle_ps(pair[l], pair[l + 2], 0xee);
+    quad[l + 2] = _mm256_shuffle_ps(pair[l + 1], pair[l + 3], 0x44);
+    quad[l + 3] = _mm256_shuffle_ps(pair[l + 1], pair[l + 3], 0xee);
+  }
+  // word w of every lane: the low halves of quad[w] and quad[w + 4] for w < 4, the high ones after
+  Float8 word[kLanes];
+  for (int w = 0; w < 4; ++w) {
+    word[w] = Float8((FloatVector)_mm256_permute2f128_ps(quad[w], quad[w + 4], 0x20));
+    word[w + 4] = Float8((FloatVector)_mm256_permute2f128_ps(quad[w], quad[w + 4], 0x31));
+  }
+  *p0 = {word[0], word[1], word[2]};
+  *p1 = {word[3], word[4], word[5]};
+  *p2 = {word[6], word[7], gather(triangle_vertices + 8, load(record), lanes)};
 }
 
 // The lane's float3 of a lanes' float3.
@@ -264,9 +310,8 @@ inline void next_event_on_triangles(Paths& ps, const PtSceneData* scene, const P
   Float8 light_u_picked = light_pick;
   const Int8 light = pick_lights(scene->lights, params->light_count, active, &light_u_picked);
   Mask8 ok = active;
-  const Float8x3 q0 = corners(scene->triangle_vertices, light, ok, 0);
-  const Float8x3 q1 = corners(scene->triangle_vertices, light, ok, 1);
-  const Float8x3 q2 = corners(scene->triangle_vertices, light, ok, 2);
+  Float8x3 q0, q1, q2;
+  triangle_corners(scene->triangle_vertices, light, ok, &q0, &q1, &q2);
   const Float8x3 scaled_normal = kd_cross(q1 - q0, q2 - q0);
   const Float8 twice_area = kd_length(scaled_normal);
   const Float8x3 light_normal = scaled_normal / twice_area;
@@ -371,15 +416,13 @@ inline void next_event_lane_by_lane(Paths& ps, int lanes, const PtSceneData* sce
 // still alive after it, and those with a shadow ray to trace, are left in ps.alive and ps.shadow.
 inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* params, const HitRecord* hits) {
   ps.shadow = 0;
-  const Int8 hit_record = Int8(IntVector{0, 1, 2, 3, 4, 5, 6, 7});
-  const float* hit_floats = reinterpret_cast<const float*>(hits);
   const Mask8 alive = lanes_of(ps.alive);
-  const Int8 tri = gather(reinterpret_cast<const int32_t*>(hits) + 1, hit_record * 4, alive);
+  Float8 t, u, v;
+  Int8 tri;
+  hit_lanes(hits, alive, &t, &tri, &u, &v);
   Mask8 active = alive & (tri != (int32_t)KD_NO_HIT);
   // a ray that leaves the scene sees the environment, lane by lane
   int by_lane = PT_USES(params, PT_FEATURE_ENVIRONMENT) ? bits(alive & !active) : 0;
-  const Float8 t = gather(hit_floats, hit_record * 4, active);
-  const Float8 u = gather(hit_floats + 2, hit_record * 4, active), v = gather(hit_floats + 3, hit_record * 4, active);
   const Int8 material = gather(reinterpret_cast<const int32_t*>(scene->material_ids), tri, active);
   const float* material_floats = reinterpret_cast<const float*>(scene->materials);
   const int32_t* material_words = reinterpret_cast<const int32_t*>(scene->materials);
@@ -402,9 +445,8 @@ inline void shade(Paths& ps, const PtSceneData* scene, const PtRenderParams* par
     shaded_lane_by_lane(ps, by_lane);
     return;
   }
-  const Float8x3 p0 = corners(scene->triangle_vertices, tri, active, 0);
-  const Float8x3 p1 = corners(scene->triangle_vertices, tri, active, 1);
-  const Float8x3 p2 = corners(scene->triangle_vertices, tri, active, 2);
+  Float8x3 p0, p1, p2;
+  triangle_corners(scene->triangle_vertices, tri, active, &p0, &p1, &p2);
   const Float8 w0 = 1.0f - u - v;
   const Float8x3 p = w0 * p0 + u * p1 + v * p2;
   const Float8x3 origin = load3(ps.ox, ps.oy, ps.oz);
@@ -676,7 +718,7 @@ struct FirstSegments {
     for (int l = 0; l < count; ++l)
       camera[l] = pt_ray(KD_FLOAT3(paths.ox[l], paths.oy[l], paths.oz[l]),
                          KD_FLOAT3(paths.dx[l], paths.dy[l], paths.dz[l]), INFINITY);
-    HitRecord hits[kLanes];
+    HitRecord hits[kLanes] = {};
     kdray::trace_packet(arrays, camera, count, hits);
     rays += (uint64_t)count;
     const int begun = paths.alive;
@@ -712,7 +754,7 @@ inline uint64_t render(const PtSceneData* scene, const PtRenderParams* params, u
     move_path(ps, l, first.paths, __builtin_ctz(first.paths.alive));
   };
   for (int l = 0; l < kLanes; ++l) refill(l);
-  HitRecord hits[kLanes];
+  HitRecord hits[kLanes] = {};  // all read by shade(), a lane without a path as well
   while (ps.alive) {
     for (int l = 0; l < kLanes; ++l)
       if (ps.alive >> l & 1) {

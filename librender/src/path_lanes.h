@@ -77,6 +77,26 @@ inline Float8 bits_to_unit(UintVector bits) {
   return Float8((FloatVector)_mm256_cvtepi32_ps((__m256i)(bits >> 8))) * (1.0f / 16777216.0f);
 }
 
+// The 8x8 matrix of floats in `rows` transposed in place: row r becomes word r of every row.
+inline void transpose(__m256 rows[kLanes]) {
+  __m256 pair[kLanes], quad[kLanes];
+  for (int r = 0; r < kLanes; r += 2) {
+    pair[r] = _mm256_unpacklo_ps(rows[r], rows[r + 1]);
+    pair[r + 1] = _mm256_unpackhi_ps(rows[r], rows[r + 1]);
+  }
+  for (int r = 0; r < kLanes; r += 4) {
+    quad[r] = _mm256_shuffle_ps(pair[r], pair[r + 2], 0x44);
+    quad[r + 1] = _mm256_shuffle_ps(pair[r], pair[r + 2], 0xee);
+    quad[r + 2] = _mm256_shuffle_ps(pair[r + 1], pair[r + 3], 0x44);
+    quad[r + 3] = _mm256_shuffle_ps(pair[r + 1], pair[r + 3], 0xee);
+  }
+  // word w: the low halves of quad[w] and quad[w + 4] for w < 4, their high halves for w + 4
+  for (int w = 0; w < 4; ++w) {
+    rows[w] = _mm256_permute2f128_ps(quad[w], quad[w + 4], 0x20);
+    rows[w + 4] = _mm256_permute2f128_ps(quad[w], quad[w + 4], 0x31);
+  }
+}
+
 // The words of the 8 lanes' hits (t, triangle, u, v), in the lanes of the mask (0 in the others):
 // two records a load, turned into lanes by a transpose in each half.
 inline void hit_lanes(const HitRecord* hits, Mask8 lanes, Float8* t, Int8* triangle, Float8* u, Float8* v) {
@@ -103,29 +123,14 @@ inline void triangle_corners(const float* triangle_vertices, Int8 triangle, Mask
   alignas(32) int32_t record[kLanes];
   store(record, triangle * (int32_t)KD_TRIANGLE_FLOATS);
   const int reading = bits(lanes);
-  __m256 row[kLanes];
+  __m256 word[kLanes];  // each lane's first 8 floats, then word w of every lane
   for (int l = 0; l < kLanes; ++l)
-    row[l] = reading >> l & 1 ? _mm256_loadu_ps(triangle_vertices + record[l]) : _mm256_setzero_ps();
-  __m256 pair[kLanes], quad[kLanes];
-  for (int l = 0; l < kLanes; l += 2) {
-    pair[l] = _mm256_unpacklo_ps(row[l], row[l + 1]);
-    pair[l + 1] = _mm256_unpackhi_ps(row[l], row[l + 1]);
-  }
-  for (int l = 0; l < kLanes; l += 4) {
-    quad[l] = _mm256_shuffle_ps(pair[l], pair[l + 2], 0x44);
-    quad[l + 1] = _mm256_shuffle_ps(pair[l], pair[l + 2], 0xee);
-    quad[l + 2] = _mm256_shuffle_ps(pair[l + 1], pair[l + 3], 0x44);
-    quad[l + 3] = _mm256_shuffle_ps(pair[l + 1], pair[l + 3], 0xee);
-  }
-  // word w of every lane: the low halves of quad[w] and quad[w + 4] for w < 4, the high ones after
-  Float8 word[kLanes];
-  for (int w = 0; w < 4; ++w) {
-    word[w] = Float8((FloatVector)_mm256_permute2f128_ps(quad[w], quad[w + 4], 0x20));
-    word[w + 4] = Float8((FloatVector)_mm256_permute2f128_ps(quad[w], quad[w + 4], 0x31));
-  }
-  *p0 = {word[0], word[1], word[2]};
-  *p1 = {word[3], word[4], word[5]};
-  *p2 = {word[6], word[7], gather(triangle_vertices + 8, load(record), lanes)};
+    word[l] = reading >> l & 1 ? _mm256_loadu_ps(triangle_vertices + record[l]) : _mm256_setzero_ps();
+  transpose(word);
+  auto lanes_of_word = [&](int w) { return Float8((FloatVector)word[w]); };
+  *p0 = {lanes_of_word(0), lanes_of_word(1), lanes_of_word(2)};
+  *p1 = {lanes_of_word(3), lanes_of_word(4), lanes_of_word(5)};
+  *p2 = {lanes_of_word(6), lanes_of_word(7), gather(triangle_vertices + 8, load(record), lanes)};
 }
 
 // The lane's float3 of a lanes' float3.
@@ -714,10 +719,14 @@ struct FirstSegments {
     }
     if (count == 0) return false;
     begin_in_lanes(paths, count, params, pixels, samples);
+    // pt_ray of each lane's camera ray, the lanes' words transposed into records
+    static_assert(sizeof(RayRecord) == 8 * sizeof(float), "a ray: 8 floats");
+    __m256 words[kLanes] = {_mm256_load_ps(paths.ox), _mm256_load_ps(paths.oy), _mm256_load_ps(paths.oz),
+                            _mm256_load_ps(paths.dx), _mm256_load_ps(paths.dy), _mm256_load_ps(paths.dz),
+                            _mm256_setzero_ps(),      _mm256_set1_ps(INFINITY)};
+    transpose(words);
     RayRecord camera[kLanes];
-    for (int l = 0; l < count; ++l)
-      camera[l] = pt_ray(KD_FLOAT3(paths.ox[l], paths.oy[l], paths.oz[l]),
-                         KD_FLOAT3(paths.dx[l], paths.dy[l], paths.dz[l]), INFINITY);
+    for (int l = 0; l < kLanes; ++l) _mm256_storeu_ps(reinterpret_cast<float*>(&camera[l]), words[l]);
     HitRecord hits[kLanes] = {};
     kdray::trace_packet(arrays, camera, count, hits);
     rays += (uint64_t)count;

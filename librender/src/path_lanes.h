@@ -10,11 +10,12 @@
 // Then the shadow rays are traced; a path that ends is added to the film and its lane takes the
 // next path. Paths take their first segment eight at a time before they take a lane
 // (FirstSegments): the camera rays and shadow rays of eight samples in a row run close together,
-// and are traced as one packet each (kdray::trace_packet). The shading in lanes calls the device code's lane functions (kernels/kd_lane.h)
-// with 8-float lanes (lane8.h), so each lane computes what pt_path_shade computes for its path,
-// bit for bit, and the film is the scalar path tracer's and the kernel's
-// (tests/render/cpu_integrator.h compares them). A path's start is computed in lanes for the eight
-// paths begun together (begin_in_lanes); the film sums stay scalar, lane by lane.
+// and are traced as one packet each (kdray::trace_packet). The shading in lanes calls the device
+// code's lane functions (kernels/kd_lane.h) with 8-float lanes (lane8.h), so each lane computes
+// what pt_path_shade computes for its path, bit for bit, and the film is the scalar path
+// tracer's and the kernel's (tests/render/cpu_integrator.h compares them). A path's start is
+// computed in lanes for the eight paths begun together (begin_in_lanes); the film sums stay
+// scalar, lane by lane.
 //
 // Compiled into the x86-64-v3 build of render_host_pixels.cpp, inside its namespace after the
 // device code, whose functions it calls.
@@ -103,8 +104,10 @@ inline void hit_lanes(const HitRecord* hits, Mask8 lanes, Float8* t, Int8* trian
   const float* words = reinterpret_cast<const float*>(hits);
   // records l and l + 4 in one register
   __m256 row[4];
-  for (int l = 0; l < 4; ++l)
-    row[l] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(words + 4 * l)), _mm_loadu_ps(words + 4 * (l + 4)), 1);
+  for (int l = 0; l < 4; ++l) {
+    const __m256 low = _mm256_castps128_ps256(_mm_loadu_ps(words + 4 * l));
+    row[l] = _mm256_insertf128_ps(low, _mm_loadu_ps(words + 4 * (l + 4)), 1);
+  }
   const __m256 t_triangle01 = _mm256_unpacklo_ps(row[0], row[1]), u_v01 = _mm256_unpackhi_ps(row[0], row[1]);
   const __m256 t_triangle23 = _mm256_unpacklo_ps(row[2], row[3]), u_v23 = _mm256_unpackhi_ps(row[2], row[3]);
   auto in_lanes = [&](__m256 x) { return (FloatVector)_mm256_and_ps(x, (__m256)lanes.m); };
@@ -116,7 +119,7 @@ inline void hit_lanes(const HitRecord* hits, Mask8 lanes, Float8* t, Int8* trian
 
 // The three corners (pt_corner) of each lane's triangle, in the lanes of the mask (0 in the
 // others): each lane's first 8 floats read in one load and turned into lanes by a transpose, the
-// ninth gathered; eight gathers cost more on this kind of CPU than the loads and shuffles.
+// ninth gathered. Nine gathers, a load per lane each, cost more than the loads and shuffles.
 inline void triangle_corners(const float* triangle_vertices, Int8 triangle, Mask8 lanes, Float8x3* p0, Float8x3* p1,
                              Float8x3* p2) {
   static_assert(KD_TRIANGLE_FLOATS == 9, "a triangle: three corners of three floats");

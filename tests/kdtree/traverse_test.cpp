@@ -205,8 +205,12 @@ TEST(KdTraverse, NonFiniteRaysMiss) {
   const KdTree tree = build_kdtree(scene, BuildSettings{});
   const float nan = std::nanf("");
   for (const RayRecord& ray : {RayRecord{nan, 0.5f, 0, 1, 0, 0, 0, INFINITY}, RayRecord{0, 0.5f, 0, 0, 0, 0, 0, INFINITY},
-                               RayRecord{0, 0.5f, 0, nan, 1, 0, 0, INFINITY}, RayRecord{0, 0.5f, 0, 1, 0, 0, 0, nan}})
+                               RayRecord{0, 0.5f, 0, nan, 1, 0, 0, INFINITY}, RayRecord{0, 0.5f, 0, 1, 0, 0, 0, nan},
+                               RayRecord{-INFINITY, 0.5f, 0.1f, 1, 0.01f, 0.02f, 0, INFINITY},
+                               RayRecord{0, 0.5f, 0.1f, 1, INFINITY, 0.02f, 0, INFINITY}})
     EXPECT_EQ(intersect_closest(tree, ray).triangle, KD_NO_HIT);
+  // a coordinate far out is finite all the same: this ray comes into the room from 1e20 away
+  EXPECT_NE(intersect_closest(tree, RayRecord{-1.0e20f, 0.5f, 0.1f, 1, 0, 0, 0, INFINITY}).triangle, KD_NO_HIT);
 }
 
 KdNode inner_node(uint32_t axis, float split, uint32_t far_child) {

@@ -13,14 +13,19 @@
 #include "pt_types.h"
 
 #ifdef KD_FEATURE_TEXTURES
+/* x wrapped into [0, n): its remainder, made non-negative; x is usually in range already, and the
+ * division is the dearest step of a lookup. */
+KD_INLINE int pt_wrap(int x, int n) {
+  if ((uint)x < (uint)n) return x;
+  x = x % n;
+  return x < 0 ? x + n : x;
+}
+/* The texel at (x, y), both wrapped already. */
 KD_INLINE float4 pt_texel(KD_GLOBAL const float4* texels, PtTexture tex, int x, int y) {
-  x = x % (int)tex.width;
-  y = y % (int)tex.height;
-  x += x < 0 ? (int)tex.width : 0;
-  y += y < 0 ? (int)tex.height : 0;
   return texels[tex.first_texel + (uint)y * tex.width + (uint)x];
 }
-/* Bilinear lookup with wrapping; v = 0 is the bottom row (OBJ convention). */
+/* Bilinear lookup with wrapping; v = 0 is the bottom row (OBJ convention). The second column and
+ * row are the first ones' neighbours, wrapped: (x + 1) mod n from x mod n, without a division. */
 KD_INLINE float4 pt_texture_lookup(KD_GLOBAL const PtTexture* textures, KD_GLOBAL const float4* texels, int index,
                                  float2 uv) {
   PtTexture tex = textures[index];
@@ -28,9 +33,10 @@ KD_INLINE float4 pt_texture_lookup(KD_GLOBAL const PtTexture* textures, KD_GLOBA
   float fy = (1.0f - uv.y) * (float)tex.height - 0.5f;
   float x0 = floor(fx), y0 = floor(fy);
   float ax = fx - x0, ay = fy - y0;
-  int ix = (int)x0, iy = (int)y0;
-  float4 top = kd_mix4(pt_texel(texels, tex, ix, iy), pt_texel(texels, tex, ix + 1, iy), ax);
-  float4 bottom = kd_mix4(pt_texel(texels, tex, ix, iy + 1), pt_texel(texels, tex, ix + 1, iy + 1), ax);
+  const int ix = pt_wrap((int)x0, (int)tex.width), iy = pt_wrap((int)y0, (int)tex.height);
+  const int ix1 = ix + 1 == (int)tex.width ? 0 : ix + 1, iy1 = iy + 1 == (int)tex.height ? 0 : iy + 1;
+  float4 top = kd_mix4(pt_texel(texels, tex, ix, iy), pt_texel(texels, tex, ix1, iy), ax);
+  float4 bottom = kd_mix4(pt_texel(texels, tex, ix, iy1), pt_texel(texels, tex, ix1, iy1), ax);
   return kd_mix4(top, bottom, ay);
 }
 /* The interpolated UV of barycentric point (u, v) of a triangle with vertex numbers idx. */

@@ -113,8 +113,9 @@ KD_HOT_INLINE int kd_ray_setup(KdRay* ray, float ox, float oy, float oz, float d
   ray->sz = 1.0f / ray->dir[kz];
 #else
   /* The same six divisions as two four-wide ones: each lane is rounded as the scalar division
-   * is, so the values are the same bits, and a ray's setup no longer waits on six divisions
-   * one after another (bench/LOG.md, "A ray's divisions four at a time"). */
+   * is, so the values are the same bits. The host's renders, whose shading in lanes divides as
+   * well, run faster so; traces alone do not change (bench/LOG.md, "A ray's divisions four at
+   * a time"). */
   const kd_f4 reciprocal = KD_F4(1.0f, 1.0f, 1.0f, 1.0f) / KD_F4(dx, dy, dz, 1.0f);
   ray->inv_dir[0] = kd_absf(dx) > KD_TINY_DIRECTION ? reciprocal[0] : kd_copysignf(KD_HUGE_RECIPROCAL, dx);
   ray->inv_dir[1] = kd_absf(dy) > KD_TINY_DIRECTION ? reciprocal[1] : kd_copysignf(KD_HUGE_RECIPROCAL, dy);

@@ -85,9 +85,11 @@ KD_INLINE void kd_ray_axes(KdRay* ray) {
   ray->kz = kz;
 }
 
-KD_INLINE float kd_safe_reciprocal(float d) {
-  return kd_absf(d) > KD_TINY_DIRECTION ? 1.0f / d : kd_copysignf(KD_HUGE_RECIPROCAL, d);
+/* 1 / d (given as `quotient`), or KD_HUGE_RECIPROCAL with d's sign where d is tiny. */
+KD_INLINE float kd_finite_reciprocal(float d, float quotient) {
+  return kd_absf(d) > KD_TINY_DIRECTION ? quotient : kd_copysignf(KD_HUGE_RECIPROCAL, d);
 }
+KD_INLINE float kd_safe_reciprocal(float d) { return kd_finite_reciprocal(d, 1.0f / d); }
 
 /* Fills `ray`; returns 0 for a ray no triangle can be hit by (non-finite numbers, zero
  * direction, empty interval). */
@@ -117,9 +119,9 @@ KD_HOT_INLINE int kd_ray_setup(KdRay* ray, float ox, float oy, float oz, float d
    * well, run faster so; traces alone do not change (bench/LOG.md, "A ray's divisions four at
    * a time"). */
   const kd_f4 reciprocal = KD_F4(1.0f, 1.0f, 1.0f, 1.0f) / KD_F4(dx, dy, dz, 1.0f);
-  ray->inv_dir[0] = kd_absf(dx) > KD_TINY_DIRECTION ? reciprocal[0] : kd_copysignf(KD_HUGE_RECIPROCAL, dx);
-  ray->inv_dir[1] = kd_absf(dy) > KD_TINY_DIRECTION ? reciprocal[1] : kd_copysignf(KD_HUGE_RECIPROCAL, dy);
-  ray->inv_dir[2] = kd_absf(dz) > KD_TINY_DIRECTION ? reciprocal[2] : kd_copysignf(KD_HUGE_RECIPROCAL, dz);
+  ray->inv_dir[0] = kd_finite_reciprocal(dx, reciprocal[0]);
+  ray->inv_dir[1] = kd_finite_reciprocal(dy, reciprocal[1]);
+  ray->inv_dir[2] = kd_finite_reciprocal(dz, reciprocal[2]);
   kd_ray_axes(ray);
   const int kx = ray->kx, ky = ray->ky, kz = ray->kz;
   const float dir_kz = ray->dir[kz];

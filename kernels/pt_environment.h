@@ -12,8 +12,10 @@
  * Sampling distribution: cell (i, j) of the W x H grid over [0,1)^2 has weight
  * luminance(texel) * sin(theta_j), theta_j = pi (j + 0.5) / H. The table `cdf` holds H rows of W
  * conditional cdf values (row j at j * W, each ending in 1), then the H values of the marginal
- * cdf over rows. The density in (u, v) is then p_row(j) p_col(i | j) W H, and over solid angle
- * that divided by 2 pi^2 sin(theta).
+ * cdf over rows, then the guides of the H rows (pt_cdf_guide_size(W) + 1 each, row j's at
+ * W H + H + j (pt_cdf_guide_size(W) + 1)) and the marginal's (pt_cdf_guide_size(H) + 1): words
+ * that are integers, not floats. The density in (u, v) is then p_row(j) p_col(i | j) W H, and
+ * over solid angle that divided by 2 pi^2 sin(theta).
  *
  * Compiles as OpenCL C and as C++ (the host tests check the table against histograms). */
 #ifndef PT_ENVIRONMENT_H
@@ -22,15 +24,42 @@
 #include "kd_compat.h"
 #include "pt_types.h"
 
-/* Index of the first of n ascending cdf values that exceeds u (cdf[n - 1] = 1 > u). A cell with
- * zero probability repeats its predecessor's value and so is never returned. */
-KD_INLINE kd_u32 pt_cdf_find(KD_GLOBAL const float* cdf, kd_u32 n, float u) {
-  kd_u32 lo = 0, hi = n - 1;
+/* G, the guide's cells for a cdf of n values: the largest power of two up to n / 16 (at least 1),
+ * so that a cell holds about one cache line of cdf values. */
+KD_INLINE kd_u32 pt_cdf_guide_size(kd_u32 n) {
+  const kd_u32 cells = n >> 4 > 1u ? n >> 4 : 1u;
+#ifdef __OPENCL_VERSION__
+  return 1u << (31u - clz(cells));
+#else
+  return 1u << (31 - __builtin_clz(cells));
+#endif
+}
+
+/* Index of the first of n ascending cdf values that exceeds u, for 0 <= u < 1 (cdf[n - 1] = 1 > u).
+ * A cell with zero probability repeats its predecessor's value and so is never returned.
+ *
+ * `guide` (pt_cdf_guide_size(n) + 1 words, G = pt_cdf_guide_size(n)) holds for each k <= G the
+ * index the search returns for u = k / G (n - 1 for k = G). For u in [k / G, (k + 1) / G) the
+ * answer lies between guide[k] and guide[k + 1] (it grows with u), and u * G is exact (G is a
+ * power of two), so a bisection of that range returns the very index a bisection of the whole
+ * cdf would, after one or two dependent reads of the table instead of log2(n): the environment's
+ * rows lie far apart in memory, and each read of a whole-row bisection waited on a cache miss
+ * (bench/LOG.md, "The environment's table searched from guides"). */
+KD_INLINE kd_u32 pt_cdf_find(KD_GLOBAL const float* cdf, kd_u32 n, KD_GLOBAL const float* guide, float u) {
+  const kd_u32 cells = pt_cdf_guide_size(n);
+  kd_u32 k = (kd_u32)(u * (float)cells);
+  k = k < cells ? k : cells - 1u;
+  kd_u32 lo = kd_as_uint(guide[k]), hi = kd_as_uint(guide[k + 1u]);
   while (lo < hi) {
     kd_u32 mid = (lo + hi) / 2;
     if (u < cdf[mid]) hi = mid; else lo = mid + 1;
   }
   return lo;
+}
+
+/* Where the guide of row j (j = height: the marginal's) lies in the table. */
+KD_INLINE KD_GLOBAL const float* pt_env_guide(KD_GLOBAL const float* cdf, kd_u32 width, kd_u32 height, kd_u32 j) {
+  return cdf + width * height + height + j * (pt_cdf_guide_size(width) + 1u);
 }
 
 /* Probability of cell i of a cdf. */
@@ -55,9 +84,9 @@ KD_INLINE float pt_env_pdf_uv(KD_GLOBAL const float* cdf, kd_u32 width, kd_u32 h
 KD_INLINE float pt_env_sample_uv(KD_GLOBAL const float* cdf, kd_u32 width, kd_u32 height, float u1, float u2,
                                  float* u, float* v) {
   KD_GLOBAL const float* marginal = cdf + width * height;
-  kd_u32 j = pt_cdf_find(marginal, height, u2);
+  kd_u32 j = pt_cdf_find(marginal, height, pt_env_guide(cdf, width, height, height), u2);
   KD_GLOBAL const float* row = cdf + j * width;
-  kd_u32 i = pt_cdf_find(row, width, u1);
+  kd_u32 i = pt_cdf_find(row, width, pt_env_guide(cdf, width, height, j), u1);
   *u = ((float)i + pt_cdf_remap(row, i, u1)) / (float)width;
   *v = ((float)j + pt_cdf_remap(marginal, j, u2)) / (float)height;
   return pt_cdf_cell(marginal, j) * pt_cdf_cell(row, i) * (float)(width * height);

@@ -2,7 +2,10 @@
 // files are read in environment_image.cpp.
 #include <kdray/environment.h>
 
+#include <kernels/pt_environment.h>
+
 #include <cmath>
+#include <cstring>
 #include <memory>
 
 namespace kdray {
@@ -12,6 +15,22 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Matches pt_luminance in kernels/pt_sampling.h.
 double luminance(const float* rgb) { return (double(rgb[0]) + rgb[1] + rgb[2]) / 3.0; }
+
+// pt_cdf_find's guide of the n cdf values at `cdf`, written at `guide`: for each k < G the first
+// index whose value exceeds k / G (compared as the search compares, in float), then n - 1.
+void write_guide(const float* cdf, uint32_t n, float* guide) {
+  const uint32_t cells = pt_cdf_guide_size(n);
+  uint32_t index = 0;
+  for (uint32_t k = 0; k <= cells; ++k) {
+    if (k == cells) {
+      index = n - 1;
+    } else {
+      const float u = float(k) / float(cells);
+      while (!(u < cdf[index])) ++index;  // ends: cdf[n - 1] is 1 > u
+    }
+    std::memcpy(&guide[k], &index, sizeof index);
+  }
+}
 
 }  // namespace
 
@@ -32,7 +51,8 @@ Environment uniform_environment(const Vec3& color) {
 
 std::vector<float> environment_sampling_table(const Environment& env) {
   const uint32_t w = env.width, h = env.height;
-  std::vector<float> table(size_t(w) * h + h);
+  const size_t row_guide = pt_cdf_guide_size(w) + 1;
+  std::vector<float> table(size_t(w) * h + h + h * row_guide + pt_cdf_guide_size(h) + 1);
   std::vector<double> row_sums(h);
   std::vector<double> row(w);
   double total = 0;
@@ -58,6 +78,9 @@ std::vector<float> environment_sampling_table(const Environment& env) {
   }
   for (uint32_t j = 0; j < h; ++j) marginal[j] = float(marginal[j] / running);
   marginal[h - 1] = 1.0f;
+  float* guides = marginal + h;
+  for (uint32_t j = 0; j < h; ++j) write_guide(table.data() + size_t(j) * w, w, guides + j * row_guide);
+  write_guide(marginal, h, guides + h * row_guide);
   return table;
 }
 

@@ -29,7 +29,9 @@ TEST(EnvironmentTable, DensityIntegratesToOneAndFollowsLuminanceTimesSinTheta) {
   for (const Environment& env : {test::sun_environment(), test::coordinate_environment(7, 5),
                                  uniform_environment({1, 1, 1})}) {
     std::vector<float> table = environment_sampling_table(env);
-    ASSERT_EQ(table.size(), size_t(env.width) * env.height + env.height);
+    ASSERT_EQ(table.size(), size_t(env.width) * env.height + env.height +
+                                size_t(env.height) * (pt_cdf_guide_size(env.width) + 1) +
+                                pt_cdf_guide_size(env.height) + 1);
     double integral = 0, total_weight = 0;
     for (uint32_t j = 0; j < env.height; ++j)
       for (uint32_t i = 0; i < env.width; ++i) total_weight += weight(env, i, j);
@@ -90,6 +92,50 @@ TEST(EnvironmentTable, SamplesMatchTheDensityChiSquare) {
   const double z = 4.75, k = dof;
   const double limit = k * std::pow(1 - 2 / (9 * k) + z * std::sqrt(2 / (9 * k)), 3);
   EXPECT_LT(chi2, limit) << "dof " << dof;
+}
+
+// The first index whose value exceeds u, by bisecting the whole cdf.
+uint32_t bisect(const float* cdf, uint32_t n, float u) {
+  uint32_t lo = 0, hi = n - 1;
+  while (lo < hi) {
+    const uint32_t mid = (lo + hi) / 2;
+    if (u < cdf[mid]) hi = mid; else lo = mid + 1;
+  }
+  return lo;
+}
+
+TEST(EnvironmentTable, TheGuidedSearchFindsWhatBisectingTheWholeCdfFinds) {
+  // A sun (most of a row's mass in a few cells, and empty cells), a map of distinct cells, a
+  // uniform one, a row width that is no power of two and one below 16; u at random, at the
+  // guides' own bounds k / G and next to them, and at each cdf value and next to it.
+  for (const Environment& env : {test::sun_environment(), test::sun_environment(1000, 300),
+                                 test::coordinate_environment(7, 5), uniform_environment({1, 1, 1})}) {
+    const std::vector<float> table = environment_sampling_table(env);
+    const uint32_t w = env.width, h = env.height;
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    for (uint32_t j = 0; j <= h; ++j) {
+      const float* cdf = j < h ? table.data() + size_t(j) * w : table.data() + size_t(w) * h;
+      const uint32_t n = j < h ? w : h;
+      const float* guide = pt_env_guide(table.data(), w, h, j);
+      std::vector<float> us;
+      for (int s = 0; s < 200; ++s) us.push_back(uniform(random));
+      const uint32_t cells = pt_cdf_guide_size(n);
+      for (uint32_t k = 0; k < cells; ++k) {
+        const float bound = float(k) / float(cells);
+        us.push_back(bound);
+        if (k > 0) us.push_back(std::nextafter(bound, 0.0f));
+      }
+      for (uint32_t i = 0; i < n; ++i) {
+        if (cdf[i] < 1.0f) us.push_back(cdf[i]);
+        us.push_back(std::nextafter(cdf[i], 0.0f));
+      }
+      for (const float u : us) {
+        ASSERT_TRUE(u >= 0.0f && u < 1.0f);
+        ASSERT_EQ(pt_cdf_find(cdf, n, guide, u), bisect(cdf, n, u)) << env.source << " row " << j << " u " << u;
+      }
+    }
+  }
 }
 
 TEST(EnvironmentTable, ABlackMapGetsAUniformTableInsteadOfNaN) {

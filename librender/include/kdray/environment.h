@@ -28,7 +28,8 @@ Environment uniform_environment(const Vec3& color);
 
 // The sampling table of kernels/pt_environment.h: height rows of width conditional cdf values,
 // then the height values of the marginal cdf, for cell weights luminance * sin(theta) (strength
-// and rotation do not change it). A map without any light gives a uniform table.
+// and rotation do not change it), then the search guides of the rows and of the marginal. A map
+// without any light gives a uniform table.
 std::vector<float> environment_sampling_table(const Environment& environment);
 
 // Mean of luminance over the sphere (weighting rows by sin(theta)), times strength: 0 means

@@ -4,8 +4,11 @@
 #     HDR, resized from a corpus map) and building its sampling table (environment_bench);
 #  2. the sample Cornell box (emissive triangles only) rendered by a baseline kdrender and this
 #     one, interleaved: the environment and punctual code must cost it nothing;
-#  3. an HDRI-lit mesh against Mitsuba 3 (llvm_ad_rgb, multijitter): channel means.
-# usage: bench/lights.sh BUILD_DIR [BASELINE_KDRENDER] [MITSUBA_PYTHON]
+#  3. an HDRI-lit mesh against Mitsuba 3 (llvm_ad_rgb, multijitter): channel means;
+#  4. with a baseline: the bunny under 4096x2048 maps, the baseline and this build alternated
+#     $ROUNDS times (9 by default): median render_seconds, the median of the paired ratios, and
+#     whether the two images are the same.
+# usage: [ROUNDS=9] bench/lights.sh BUILD_DIR [BASELINE_KDRENDER] [MITSUBA_PYTHON]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=$(realpath "${1:-build}")
@@ -30,13 +33,10 @@ scene_files samples/cornell-box.obj cornell
 VIEW="--cam-pos 278,273,-800 --cam-target 278,273,0 --fov 39.3077 --width 256 --height 256 --spp 64"
 run() { "$1" "$WORK/$2.kdscene" "$WORK/cornell.kdtree" -o "$WORK/c.exr" $VIEW --json | json_field render_seconds; }
 if [ -n "$BASELINE" ]; then
-  # A version 2 scene without lights is a version 1 scene but for the version field (outside the
-  # checksum): the baseline reads this copy.
-  cp "$WORK/cornell.kdscene" "$WORK/cornell-v1.kdscene"
-  printf '\x01' | dd of="$WORK/cornell-v1.kdscene" bs=1 seek=8 conv=notrunc status=none
+  # The baseline must read this build's scene files (a build of the same .kdscene version).
   : > "$WORK/a"; : > "$WORK/b"
-  run "$BASELINE" cornell-v1 > /dev/null; run "$KDRENDER" cornell > /dev/null  # warm the program caches
-  for i in 1 2 3 4 5; do run "$BASELINE" cornell-v1 >> "$WORK/a"; run "$KDRENDER" cornell >> "$WORK/b"; done
+  run "$BASELINE" cornell > /dev/null; run "$KDRENDER" cornell > /dev/null  # warm the program caches
+  for i in 1 2 3 4 5; do run "$BASELINE" cornell >> "$WORK/a"; run "$KDRENDER" cornell >> "$WORK/b"; done
   echo "baseline $(median < "$WORK/a") s, this build $(median < "$WORK/b") s (runs: $(tr '\n' ' ' < "$WORK/a")| $(tr '\n' ' ' < "$WORK/b"))"
 fi
 echo "kernel options: $("$KDRENDER" "$WORK/cornell.kdscene" "$WORK/cornell.kdtree" -o "$WORK/c.exr" $VIEW --json | json_field kernel_options)"
@@ -50,4 +50,23 @@ if [ -x "$MITSUBA" ]; then
     --env "$CORPUS/hdri/courtyard.exr" --threads 2 --sampler multijitter > /dev/null
   for image in kd mi; do echo "$image: $(oiiotool --stats "$WORK/$image.exr" | grep 'Stats Avg' | head -1)"; done
   "$KDCOMPARE" "$WORK/kd.exr" "$WORK/mi.exr" || true
+fi
+
+if [ -n "$BASELINE" ]; then
+  echo "== 4. bunny under 4096x2048 maps, 256x256, 64 spp, 8 bounces: baseline / this build, alternated"
+  scene_files "$CORPUS/bunny/bun_zipper.ply" bunny
+  oiiotool "$CORPUS/hdri/sunset.exr" --resize 4096x2048 -d float --compression zip -o "$WORK/sunset.exr"
+  BUNNY="--width 256 --height 256 --spp 64 --max-bounces 8"
+  # render KDRENDER IMAGE MAP: render_seconds of the bunny under $WORK/MAP.exr, written to $WORK/IMAGE.exr
+  render() { "$1" "$WORK/bunny.kdscene" "$WORK/bunny.kdtree" -o "$WORK/$2.exr" $BUNNY --env "$WORK/$3.exr" --json |
+    json_field render_seconds; }
+  for map in map-float sunset; do
+    : > "$WORK/a"; : > "$WORK/b"; : > "$WORK/r"
+    for ((i = 0; i < ${ROUNDS:-9}; ++i)); do
+      a=$(render "$BASELINE" base $map) b=$(render "$KDRENDER" this $map)
+      echo "$a" >> "$WORK/a"; echo "$b" >> "$WORK/b"; echo "$b / $a" | bc -l >> "$WORK/r"
+    done
+    echo "$map: baseline $(median < "$WORK/a") s, this build $(median < "$WORK/b") s, paired ratio $(printf %.3f "$(median < "$WORK/r")")," \
+      "images $("$KDCOMPARE" "$WORK/base.exr" "$WORK/this.exr" --json | json_field max_abs | sed 's/^0\(\.0*\)\?$/the same/')"
+  done
 fi

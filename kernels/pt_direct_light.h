@@ -37,11 +37,13 @@ KD_INLINE void pt_path_resolve_shadow(PtPath* path, int occluded) {
   path->shadow_pending = 0;
 }
 
-/* Picks an emitter by its share of the emitted power: the first entry whose cdf exceeds u. *u
- * becomes u's position inside that entry's cdf interval, a fresh uniform number in [0, 1) for
- * sampling the picked light (stratified along with the pick). */
-KD_INLINE uint pt_pick_light(KD_GLOBAL const PtLight* lights, uint count, float* u) {
-  uint lo = 0, hi = count - 1;
+/* Picks an emitter by its share of the emitted power: the first entry whose cdf exceeds u, searched
+ * from the table's guide (kernels/pt_sampling.h). *u becomes u's position inside that entry's cdf
+ * interval, a fresh uniform number in [0, 1) for sampling the picked light (stratified along with
+ * the pick). */
+KD_INLINE uint pt_pick_light(KD_GLOBAL const PtLight* lights, KD_GLOBAL const kd_u32* guide, uint count, float* u) {
+  const kd_u32 k = pt_cdf_guide_cell(count, *u);
+  uint lo = guide[k], hi = guide[k + 1u];
   while (lo < hi) {
     uint mid = (lo + hi) / 2;
     if (*u < lights[mid].cdf) hi = mid; else lo = mid + 1;
@@ -59,7 +61,7 @@ KD_INLINE void pt_next_event(PtPath* path, const PtSceneData* scene, KD_GLOBAL c
                           float3 ng, float3 wo) {
   float2 pick_v = pt_bounce_sample2(samples, PT_DIM_LIGHT_PICK);
   float u = pick_v.x;
-  uint tri = pt_pick_light(scene->lights, params->light_count, &u);
+  uint tri = pt_pick_light(scene->lights, scene->light_guide, params->light_count, &u);
   float3 q0 = pt_corner(scene->triangle_vertices, tri, 0);
   float3 q1 = pt_corner(scene->triangle_vertices, tri, 1);
   float3 q2 = pt_corner(scene->triangle_vertices, tri, 2);

@@ -22,33 +22,15 @@
 #define PT_ENVIRONMENT_H
 
 #include "kd_compat.h"
+#include "pt_sampling.h"
 #include "pt_types.h"
 
-/* G, the guide's cells for a cdf of n values: the largest power of two up to n / 16 (at least 1),
- * so that a cell holds about one cache line of cdf values. */
-KD_INLINE kd_u32 pt_cdf_guide_size(kd_u32 n) {
-  const kd_u32 cells = n >> 4 > 1u ? n >> 4 : 1u;
-#ifdef __OPENCL_VERSION__
-  return 1u << (31u - clz(cells));
-#else
-  return 1u << (31 - __builtin_clz(cells));
-#endif
-}
-
-/* Index of the first of n ascending cdf values that exceeds u, for 0 <= u < 1 (cdf[n - 1] = 1 > u).
- * A cell with zero probability repeats its predecessor's value and so is never returned.
- *
- * `guide` (pt_cdf_guide_size(n) + 1 words, G = pt_cdf_guide_size(n)) holds for each k <= G the
- * index the search returns for u = k / G (n - 1 for k = G). For u in [k / G, (k + 1) / G) the
- * answer lies between guide[k] and guide[k + 1] (it grows with u), and u * G is exact (G is a
- * power of two), so a bisection of that range returns the very index a bisection of the whole
- * cdf would, after one or two dependent reads of the table instead of log2(n): the environment's
- * rows lie far apart in memory, and each read of a whole-row bisection waited on a cache miss
- * (bench/LOG.md, "The environment's table searched from guides"). */
+/* Index of the first of n ascending cdf values that exceeds u, for 0 <= u < 1 (cdf[n - 1] = 1 > u),
+ * searched from its guide (kernels/pt_sampling.h), whose words here are integers stored in the
+ * float table. A cell with zero probability repeats its predecessor's value and so is never
+ * returned. */
 KD_INLINE kd_u32 pt_cdf_find(KD_GLOBAL const float* cdf, kd_u32 n, KD_GLOBAL const float* guide, float u) {
-  const kd_u32 cells = pt_cdf_guide_size(n);
-  kd_u32 k = (kd_u32)(u * (float)cells);
-  k = k < cells ? k : cells - 1u;
+  const kd_u32 k = pt_cdf_guide_cell(n, u);
   kd_u32 lo = kd_as_uint(guide[k]), hi = kd_as_uint(guide[k + 1u]);
   while (lo < hi) {
     kd_u32 mid = (lo + hi) / 2;
@@ -91,8 +73,6 @@ KD_INLINE float pt_env_sample_uv(KD_GLOBAL const float* cdf, kd_u32 width, kd_u3
   *v = ((float)j + pt_cdf_remap(marginal, j, u2)) / (float)height;
   return pt_cdf_cell(marginal, j) * pt_cdf_cell(row, i) * (float)(width * height);
 }
-
-#include "pt_sampling.h"
 
 /* Map coordinates of world direction d (unit). */
 KD_INLINE float2 pt_env_uv(KD_GLOBAL const PtRenderParams* params, float3 d) {

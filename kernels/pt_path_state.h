@@ -23,6 +23,7 @@ typedef struct PtSceneData {
   KD_GLOBAL const PtTexture* textures;
   KD_GLOBAL const float4* texels;
   KD_GLOBAL const PtLight* lights;
+  KD_GLOBAL const kd_u32* light_guide; /* pt_pick_light's (kernels/pt_sampling.h) */
   KD_GLOBAL const float* env_texels;    /* KD_FEATURE_ENVIRONMENT: RGB (kernels/pt_environment.h) */
   KD_GLOBAL const float* env_cdf;
   KD_GLOBAL const PtPunctual* punctuals; /* KD_FEATURE_PUNCTUAL */

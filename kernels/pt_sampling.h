@@ -13,6 +13,34 @@ KD_INLINE float3 pt_load3(KD_GLOBAL const float* array, uint index) {
   return KD_FLOAT3(array[3 * index], array[3 * index + 1], array[3 * index + 2]);
 }
 
+/* Guides of the cdf searches (the environment's table, kernels/pt_environment.h; the emitters'
+ * table, kernels/pt_direct_light.h). A search returns the first of n ascending cdf values (the
+ * last 1) that exceeds u, for 0 <= u < 1. Its guide holds G + 1 indices, G = pt_cdf_guide_size(n):
+ * for k < G the index the search returns for u = k / G, and n - 1 for k = G. The answer grows
+ * with u, so for k = pt_cdf_guide_cell(n, u) it lies between guide[k] and guide[k + 1], and u * G
+ * is exact (G is a power of two): a bisection of that range returns the very index a bisection
+ * of the whole cdf returns, after one or two dependent reads of the table instead of log2(n),
+ * each of which waited on a cache miss in a large table (bench/LOG.md, "The environment's table
+ * searched from guides"). */
+
+/* G: the largest power of two up to n / 16 (at least 1), so that a cell holds about one cache
+ * line of cdf values. */
+KD_INLINE kd_u32 pt_cdf_guide_size(kd_u32 n) {
+  const kd_u32 cells = n >> 4 > 1u ? n >> 4 : 1u;
+#ifdef __OPENCL_VERSION__
+  return 1u << (31u - clz(cells));
+#else
+  return 1u << (31 - __builtin_clz(cells));
+#endif
+}
+
+/* k, the guide's cell that u falls in. */
+KD_INLINE kd_u32 pt_cdf_guide_cell(kd_u32 n, float u) {
+  const kd_u32 cells = pt_cdf_guide_size(n);
+  const kd_u32 k = (kd_u32)(u * (float)cells);
+  return k < cells ? k : cells - 1u;
+}
+
 /* Orthonormal basis around unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited"). */
 KD_LANE_FN void pt_basis(kd_lane3 n, kd_lane3* t, kd_lane3* b) {
   kd_lane sign = copysign((kd_lane)1.0f, n.z);

@@ -21,6 +21,7 @@
   SHADING(PtTexture, textures)              \
   SHADING(float4, texels)                   \
   SHADING(PtLight, lights)                  \
+  SHADING(kd_u32, light_guide)              \
   SHADING(float, env_texels)                \
   SHADING(float, env_cdf)                   \
   SHADING(PtPunctual, punctuals)

@@ -15,7 +15,7 @@ struct DeviceScene {
   DeviceGeometry geometry;
   cl::Buffer triangle_vertices;  // gather_triangle_vertices: what shading reads of a hit
   cl::Buffer indices;            // 3 per triangle: vertex numbers of normals and uvs
-  cl::Buffer material_ids, materials, normals, uvs, tangents, textures, texels, lights;
+  cl::Buffer material_ids, materials, normals, uvs, tangents, textures, texels, lights, light_guide;
   cl::Buffer env_texels, env_cdf;  // kernels/pt_environment.h
   cl::Buffer punctuals;            // PtPunctual per Scene::lights entry
 };

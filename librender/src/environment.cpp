@@ -2,11 +2,13 @@
 // files are read in environment_image.cpp.
 #include <kdray/environment.h>
 
-#include <kernels/pt_environment.h>
+#include <kernels/pt_sampling.h>
 
 #include <cmath>
 #include <cstring>
 #include <memory>
+
+#include "cdf_guide.h"
 
 namespace kdray {
 namespace {
@@ -15,22 +17,6 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Matches pt_luminance in kernels/pt_sampling.h.
 double luminance(const float* rgb) { return (double(rgb[0]) + rgb[1] + rgb[2]) / 3.0; }
-
-// pt_cdf_find's guide of the n cdf values at `cdf`, written at `guide`: for each k < G the first
-// index whose value exceeds k / G (compared as the search compares, in float), then n - 1.
-void write_guide(const float* cdf, uint32_t n, float* guide) {
-  const uint32_t cells = pt_cdf_guide_size(n);
-  uint32_t index = 0;
-  for (uint32_t k = 0; k <= cells; ++k) {
-    if (k == cells) {
-      index = n - 1;
-    } else {
-      const float u = float(k) / float(cells);
-      while (!(u < cdf[index])) ++index;  // ends: cdf[n - 1] is 1 > u
-    }
-    std::memcpy(&guide[k], &index, sizeof index);
-  }
-}
 
 }  // namespace
 
@@ -78,9 +64,12 @@ std::vector<float> environment_sampling_table(const Environment& env) {
   }
   for (uint32_t j = 0; j < h; ++j) marginal[j] = float(marginal[j] / running);
   marginal[h - 1] = 1.0f;
+  // The guides' indices as the table's words (pt_cdf_find reads them back as integers).
   float* guides = marginal + h;
-  for (uint32_t j = 0; j < h; ++j) write_guide(table.data() + size_t(j) * w, w, guides + j * row_guide);
-  write_guide(marginal, h, guides + h * row_guide);
+  for (uint32_t j = 0; j <= h; ++j) {
+    const std::vector<uint32_t> guide = j < h ? cdf_guide(table.data() + size_t(j) * w, w) : cdf_guide(marginal, h);
+    std::memcpy(guides + j * row_guide, guide.data(), guide.size() * sizeof(uint32_t));
+  }
   return table;
 }
 

@@ -286,14 +286,25 @@ inline Float8x3 bsdf_sample(const LaneBsdf& m, Float8x3 n, Float8x3 wo, Float8 u
 }
 
 // pt_pick_light for the lanes of `lanes`: the triangles picked, and each lane's u made its
-// position inside its entry's cdf interval. Each lane bisects step for step as pt_pick_light does
-// (so it ends on the same entry whatever the cdf holds), the entries read by gathers: the search
-// lane by lane mispredicted its branch about every other step.
-inline Int8 pick_lights(const PtLight* lights, uint32_t count, Mask8 lanes, Float8* u) {
+// position inside its entry's cdf interval. Each lane starts from the guide's range and bisects
+// step for step as pt_pick_light does (so it ends on the same entry whatever the cdf holds), the
+// entries read by gathers: the search lane by lane mispredicted its branch about every other step.
+inline Int8 pick_lights(const PtLight* lights, const uint32_t* guide, uint32_t count, Mask8 lanes, Float8* u) {
   static_assert(sizeof(PtLight) == 8 && KD_OFFSETOF(PtLight, triangle) == 0 && KD_OFFSETOF(PtLight, cdf) == 4,
                 "PtLight: 2 words triangle, cdf");
   const float* cdf = reinterpret_cast<const float*>(lights) + 1;
   IntVector lo = IntVector{}, hi = IntVector{} + (int32_t)(count - 1);
+  // A guide of one cell spans the whole cdf (both searches return the same entry from any range
+  // that holds it), so only a larger one is read.
+  const uint32_t cells = pt_cdf_guide_size(count);
+  if (cells > 1) {
+    // pt_cdf_guide_cell lane by lane: u * G is exact, and u >= 0 truncates alike signed or not
+    const Int8 cell = kd_lane_to_int(*u * Float8((float)cells));
+    const Int8 k = Int8(cell.v < (int32_t)cells ? cell.v : IntVector{} + (int32_t)(cells - 1));
+    const int32_t* words = reinterpret_cast<const int32_t*>(guide);
+    lo = gather(words, k, lanes).v;
+    hi = gather(words, k + 1, lanes).v;
+  }
   for (;;) {
     const Mask8 searching = lanes & Mask8{lo < hi};
     if (!kd_any(searching)) break;
@@ -316,7 +327,7 @@ inline void next_event_on_triangles(Paths& ps, const PtSceneData* scene, const P
                                     Float8 light_pick, Float8 light_v, Float8x3 p, Float8x3 n, Float8x3 ng_facing,
                                     Float8x3 wo, const LaneBsdf& m, Float8x3 beta) {
   Float8 light_u_picked = light_pick;
-  const Int8 light = pick_lights(scene->lights, params->light_count, active, &light_u_picked);
+  const Int8 light = pick_lights(scene->lights, scene->light_guide, params->light_count, active, &light_u_picked);
   Mask8 ok = active;
   Float8x3 q0, q1, q2;
   triangle_corners(scene->triangle_vertices, light, ok, &q0, &q1, &q2);

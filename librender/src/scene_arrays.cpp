@@ -8,6 +8,8 @@
 #include <map>
 #include <utility>
 
+#include "cdf_guide.h"
+
 namespace kdray {
 namespace {
 
@@ -88,9 +90,12 @@ void add_emitters(SceneArrays& arrays, const Scene& scene) {
     powers.push_back(total);
     lights.push_back(PtLight{triangle, 0});
   }
-  for (size_t i = 0; i < lights.size(); ++i) lights[i].cdf = static_cast<float>(powers[i] / total);
-  if (!lights.empty()) lights.back().cdf = 1.0f;
+  std::vector<float> cdf(lights.size());
+  for (size_t i = 0; i < lights.size(); ++i) cdf[i] = static_cast<float>(powers[i] / total);
+  if (!lights.empty()) cdf.back() = 1.0f;
+  for (size_t i = 0; i < lights.size(); ++i) lights[i].cdf = cdf[i];
   arrays.light_count = static_cast<uint32_t>(lights.size());
+  if (!lights.empty()) arrays.device_light_guide = cdf_guide(cdf.data(), arrays.light_count);
   arrays.light_area_pdf_scale = total > 0 ? static_cast<float>(1.0 / total) : 0.0f;
 }
 
@@ -130,6 +135,7 @@ SceneArrays scene_arrays(const Scene& scene, const KdTree& tree, const Environme
 
   add_emitters(arrays, scene);
   arrays.lights = host_array(arrays.device_lights);
+  arrays.light_guide = host_array(arrays.device_light_guide);
 
   if (environment) {
     arrays.env_table = environment_sampling_table(*environment);

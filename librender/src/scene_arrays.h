@@ -58,6 +58,7 @@ struct SceneArrays {
   std::vector<PtTexture> device_textures;
   std::vector<float> device_texels, env_table;
   std::vector<PtLight> device_lights;
+  std::vector<uint32_t> device_light_guide;
   std::vector<PtPunctual> device_punctuals;
 
   SceneArrays() = default;

@@ -136,6 +136,42 @@ TEST(CpuIntegrator, CornellBoxWithManyUnequalLightsInLanesMatchesTheKernelBitFor
   EXPECT_GT(expect_host_matches_kernel(scene, settings, {"-DKD_FEATURE_EMISSION"}, 2), 32u * 32u / 2);
 }
 
+// A panel of 1152 small emitters below the ceiling, of three strengths and of areas that grow
+// across it: the emitters' cdf has 64 guide cells (kernels/pt_sampling.h), so the lanes' pick and
+// the kernel's each bisect from their guide's range, not the whole cdf.
+TEST(CpuIntegrator, CornellBoxWithAPanelOfManyLightsMatchesTheKernelBitForBit) {
+  Scene scene = import_scene(cornell_obj(), ImportOptions{});
+  const uint32_t first_material = uint32_t(scene.materials.size());
+  for (const Vec3 emission : {Vec3{6.0f, 5.0f, 4.0f}, Vec3{1.0f, 2.0f, 3.0f}, Vec3{0.2f, 0.2f, 0.2f}}) {
+    Material light;
+    light.type = MaterialType::Emissive;
+    light.base_color = {0.5f, 0.5f, 0.5f};
+    light.emission = emission;
+    scene.materials.push_back(light);
+  }
+  constexpr uint32_t kCells = 24;
+  auto coordinate = [](uint32_t i) { return 150.0f + 250.0f * float(i * i) / float(kCells * kCells); };
+  const uint32_t first_vertex = uint32_t(scene.positions.size());
+  for (uint32_t j = 0; j <= kCells; ++j)
+    for (uint32_t i = 0; i <= kCells; ++i) scene.positions.push_back(Vec3{coordinate(i), 500.0f, coordinate(j)});
+  for (uint32_t j = 0; j < kCells; ++j) {
+    for (uint32_t i = 0; i < kCells; ++i) {
+      const uint32_t a = first_vertex + j * (kCells + 1) + i, b = a + 1, c = a + kCells + 1, d = c + 1;
+      for (const uint32_t corner : {a, b, c, b, d, c}) scene.indices.push_back(corner);  // facing down
+      for (int t = 0; t < 2; ++t) {
+        scene.emissive_triangles.push_back(uint32_t(scene.material_ids.size()));
+        scene.material_ids.push_back(first_material + (i + j + uint32_t(t)) % 3);
+      }
+    }
+  }
+  ASSERT_EQ(scene.emissive_triangles.size(), 2u + 2 * kCells * kCells);
+  RenderSettings settings = cornell_settings();
+  settings.width = settings.height = 32;
+  settings.spp = 8;
+  settings.max_bounces = 3;
+  EXPECT_GT(expect_host_matches_kernel(scene, settings, {"-DKD_FEATURE_EMISSION"}, 2), 32u * 32u / 2);
+}
+
 // Every kind of light at once in lanes: the Cornell box's ceiling light, an environment seen
 // through the open front and a point light inside, so that the 8 lanes of a step pick different
 // kinds (triangle lights in lanes, the others sampled lane by lane and their shadow rays set up in

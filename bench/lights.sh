@@ -7,7 +7,9 @@
 #  3. an HDRI-lit mesh against Mitsuba 3 (llvm_ad_rgb, multijitter): channel means;
 #  4. with a baseline: the bunny under 4096x2048 maps, the baseline and this build alternated
 #     $ROUNDS times (9 by default): median render_seconds, the median of the paired ratios, and
-#     the largest difference between the two images (kdcompare max_abs).
+#     the largest difference between the two images (kdcompare max_abs);
+#  5. with a baseline: the Cornell box with the bunny made an emitter (69,453 emissive triangles,
+#     bench/cornell_bunny.py), the same alternation.
 # usage: [ROUNDS=9] bench/lights.sh BUILD_DIR [BASELINE_KDRENDER] [MITSUBA_PYTHON]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -71,4 +73,23 @@ if [ -n "$BASELINE" ]; then
     echo "$map: baseline $(median < "$WORK/a") s, this build $(median < "$WORK/b") s, paired ratio $ratio," \
       "images' largest difference $difference"
   done
+
+  echo "== 5. Cornell box with the bunny as an emitter, 256x256, 32 spp, 8 bounces: baseline / this build, alternated"
+  bench/cornell_bunny.py "$WORK" > /dev/null
+  # The bunny's group takes a material of its own that emits.
+  awk '/^o bunny/ {bunny = 1} bunny && /^usemtl/ {print "usemtl glow"; bunny = 0; next} {print}' \
+    "$WORK/cornell-bunny.obj" > "$WORK/glow.obj"
+  printf '\nnewmtl glow\nKd 0.5 0.5 0.5\nKe 0.3 0.3 0.3\n' >> "$WORK/cornell-box.mtl"
+  scene_files "$WORK/glow.obj" glow
+  GLOW="--cam-pos 278,273,-800 --cam-target 278,273,0 --fov 39.3077 --width 256 --height 256 --spp 32"
+  glow() { "$1" "$WORK/glow.kdscene" "$WORK/glow.kdtree" -o "$WORK/$2.exr" $GLOW --json | json_field render_seconds; }
+  : > "$WORK/a"; : > "$WORK/b"; : > "$WORK/r"
+  for ((i = 0; i < ${ROUNDS:-9}; ++i)); do
+    a=$(glow "$BASELINE" base) b=$(glow "$KDRENDER" this)
+    echo "$a" >> "$WORK/a"; echo "$b" >> "$WORK/b"; echo "$b / $a" | bc -l >> "$WORK/r"
+  done
+  ratio=$(printf %.3f "$(median < "$WORK/r")")
+  difference=$("$KDCOMPARE" "$WORK/base.exr" "$WORK/this.exr" --json | json_field max_abs)
+  echo "glow: baseline $(median < "$WORK/a") s, this build $(median < "$WORK/b") s, paired ratio $ratio," \
+    "images' largest difference $difference"
 fi

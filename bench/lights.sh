@@ -55,26 +55,32 @@ if [ -x "$MITSUBA" ]; then
 fi
 
 if [ -n "$BASELINE" ]; then
+  # alternate LABEL RENDER...: `RENDER... KDRENDER IMAGE` prints the render_seconds of a render
+  # written to $WORK/IMAGE.exr; the baseline and this build take turns $ROUNDS times, then their
+  # medians, the median of the paired ratios and the images' largest difference are printed.
+  alternate() {
+    local label=$1 a b
+    shift
+    : > "$WORK/a"; : > "$WORK/b"; : > "$WORK/r"
+    for ((i = 0; i < ${ROUNDS:-9}; ++i)); do
+      a=$("$@" "$BASELINE" base) b=$("$@" "$KDRENDER" this)
+      echo "$a" >> "$WORK/a"; echo "$b" >> "$WORK/b"; echo "$b / $a" | bc -l >> "$WORK/r"
+    done
+    echo "$label: baseline $(median < "$WORK/a") s, this build $(median < "$WORK/b") s," \
+      "paired ratio $(printf %.3f "$(median < "$WORK/r")")," \
+      "images' largest difference $("$KDCOMPARE" "$WORK/base.exr" "$WORK/this.exr" --json | json_field max_abs)"
+  }
+
   echo "== 4. bunny under 4096x2048 maps, 256x256, 64 spp, 8 bounces: baseline / this build, alternated"
   scene_files "$CORPUS/bunny/bun_zipper.ply" bunny
   oiiotool "$CORPUS/hdri/sunset.exr" --resize 4096x2048 -d float --compression zip -o "$WORK/sunset.exr"
   BUNNY="--width 256 --height 256 --spp 64 --max-bounces 8"
-  # render KDRENDER IMAGE MAP: render_seconds of the bunny under $WORK/MAP.exr, written to $WORK/IMAGE.exr
-  render() { "$1" "$WORK/bunny.kdscene" "$WORK/bunny.kdtree" -o "$WORK/$2.exr" $BUNNY --env "$WORK/$3.exr" --json |
+  under() { "$2" "$WORK/bunny.kdscene" "$WORK/bunny.kdtree" -o "$WORK/$3.exr" $BUNNY --env "$WORK/$1.exr" --json |
     json_field render_seconds; }
-  for map in map-float sunset; do
-    : > "$WORK/a"; : > "$WORK/b"; : > "$WORK/r"
-    for ((i = 0; i < ${ROUNDS:-9}; ++i)); do
-      a=$(render "$BASELINE" base $map) b=$(render "$KDRENDER" this $map)
-      echo "$a" >> "$WORK/a"; echo "$b" >> "$WORK/b"; echo "$b / $a" | bc -l >> "$WORK/r"
-    done
-    ratio=$(printf %.3f "$(median < "$WORK/r")")
-    difference=$("$KDCOMPARE" "$WORK/base.exr" "$WORK/this.exr" --json | json_field max_abs)
-    echo "$map: baseline $(median < "$WORK/a") s, this build $(median < "$WORK/b") s, paired ratio $ratio," \
-      "images' largest difference $difference"
-  done
+  for map in map-float sunset; do alternate "$map" under "$map"; done
 
-  echo "== 5. Cornell box with the bunny as an emitter, 256x256, 32 spp, 8 bounces: baseline / this build, alternated"
+  echo "== 5. Cornell box with the bunny as an emitter, 256x256, 32 spp, 8 bounces: baseline / this build," \
+    "alternated"
   bench/cornell_bunny.py "$WORK" > /dev/null
   # The bunny's group takes a material of its own that emits.
   awk '/^o bunny/ {bunny = 1} bunny && /^usemtl/ {print "usemtl glow"; bunny = 0; next} {print}' \
@@ -82,14 +88,7 @@ if [ -n "$BASELINE" ]; then
   printf '\nnewmtl glow\nKd 0.5 0.5 0.5\nKe 0.3 0.3 0.3\n' >> "$WORK/cornell-box.mtl"
   scene_files "$WORK/glow.obj" glow
   GLOW="--cam-pos 278,273,-800 --cam-target 278,273,0 --fov 39.3077 --width 256 --height 256 --spp 32"
-  glow() { "$1" "$WORK/glow.kdscene" "$WORK/glow.kdtree" -o "$WORK/$2.exr" $GLOW --json | json_field render_seconds; }
-  : > "$WORK/a"; : > "$WORK/b"; : > "$WORK/r"
-  for ((i = 0; i < ${ROUNDS:-9}; ++i)); do
-    a=$(glow "$BASELINE" base) b=$(glow "$KDRENDER" this)
-    echo "$a" >> "$WORK/a"; echo "$b" >> "$WORK/b"; echo "$b / $a" | bc -l >> "$WORK/r"
-  done
-  ratio=$(printf %.3f "$(median < "$WORK/r")")
-  difference=$("$KDCOMPARE" "$WORK/base.exr" "$WORK/this.exr" --json | json_field max_abs)
-  echo "glow: baseline $(median < "$WORK/a") s, this build $(median < "$WORK/b") s, paired ratio $ratio," \
-    "images' largest difference $difference"
+  glowing() { "$1" "$WORK/glow.kdscene" "$WORK/glow.kdtree" -o "$WORK/$2.exr" $GLOW --json |
+    json_field render_seconds; }
+  alternate glow glowing
 fi

@@ -39,9 +39,15 @@ KD_INLINE kd_u32 pt_cdf_find(KD_GLOBAL const float* cdf, kd_u32 n, KD_GLOBAL con
   return lo;
 }
 
-/* Where the guide of row j (j = height: the marginal's) lies in the table. */
+/* Where in the table the guide of row j starts (j = height: the marginal's); with j = height + 1,
+ * the table's size. The one statement of the guides' layout, for the kernels and for the table's
+ * builder (librender's environment_sampling_table). */
+KD_INLINE kd_u32 pt_env_guide_offset(kd_u32 width, kd_u32 height, kd_u32 j) {
+  const kd_u32 row_guide = pt_cdf_guide_size(width) + 1u;
+  return width * height + height + (j <= height ? j * row_guide : height * row_guide + pt_cdf_guide_size(height) + 1u);
+}
 KD_INLINE KD_GLOBAL const float* pt_env_guide(KD_GLOBAL const float* cdf, kd_u32 width, kd_u32 height, kd_u32 j) {
-  return cdf + width * height + height + j * (pt_cdf_guide_size(width) + 1u);
+  return cdf + pt_env_guide_offset(width, height, j);
 }
 
 /* Probability of cell i of a cdf. */

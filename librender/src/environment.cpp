@@ -2,7 +2,7 @@
 // files are read in environment_image.cpp.
 #include <kdray/environment.h>
 
-#include <kernels/pt_sampling.h>
+#include <kernels/pt_environment.h>
 
 #include <cmath>
 #include <cstring>
@@ -37,8 +37,7 @@ Environment uniform_environment(const Vec3& color) {
 
 std::vector<float> environment_sampling_table(const Environment& env) {
   const uint32_t w = env.width, h = env.height;
-  const size_t row_guide = pt_cdf_guide_size(w) + 1;
-  std::vector<float> table(size_t(w) * h + h + h * row_guide + pt_cdf_guide_size(h) + 1);
+  std::vector<float> table(pt_env_guide_offset(w, h, h + 1));
   std::vector<double> row_sums(h);
   std::vector<double> row(w);
   double total = 0;
@@ -65,10 +64,9 @@ std::vector<float> environment_sampling_table(const Environment& env) {
   for (uint32_t j = 0; j < h; ++j) marginal[j] = float(marginal[j] / running);
   marginal[h - 1] = 1.0f;
   // The guides' indices as the table's words (pt_cdf_find reads them back as integers).
-  float* guides = marginal + h;
   for (uint32_t j = 0; j <= h; ++j) {
     const std::vector<uint32_t> guide = j < h ? cdf_guide(table.data() + size_t(j) * w, w) : cdf_guide(marginal, h);
-    std::memcpy(guides + j * row_guide, guide.data(), guide.size() * sizeof(uint32_t));
+    std::memcpy(table.data() + pt_env_guide_offset(w, h, j), guide.data(), guide.size() * sizeof(uint32_t));
   }
   return table;
 }

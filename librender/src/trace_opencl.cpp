@@ -91,6 +91,9 @@ std::vector<HitRecord> trace_rays_opencl(const KdTree& tree, const std::vector<R
   args.ray_count = static_cast<cl_uint>(rays.size());
   cl::Buffer next_ray = runtime.buffer(sizeof(cl_uint), nullptr, CL_MEM_READ_WRITE);
   cl::zero_buffer(runtime.queue(), next_ray, sizeof(cl_uint));
+  // The hits' storage is made before the clock, as the host's is (kdtrace): on a CPU device the
+  // kernel would otherwise take the page faults of a buffer it is the first to write.
+  if (!rays.empty()) cl::zero_buffer(runtime.queue(), args.hits, rays.size() * sizeof(HitRecord));
   cl::Kernel kernel = cl::create_kernel(build.program, lanes ? "kd_trace_closest_lanes" : "kd_trace_closest");
   cl_uint arg = 0;
 #define KD_BIND_GEOMETRY(type, name) cl::set_arg(kernel.get(), arg++, geometry.name);

@@ -5,7 +5,12 @@
 #include "kd_trace_args.h"
 #include "kd_traverse.h"
 
+/* Rays a work-item takes from the counter at a time: few on a GPU, so that its thousands of
+ * work-items share the rays evenly; a CPU's build names more (trace_opencl.cpp), since each of its
+ * few work-items' fetches contends for the counter's cache line with the other cores. */
+#ifndef KD_TRACE_BATCH
 #define KD_TRACE_BATCH 32u
+#endif
 
 #define KD_TRACE_BUFFER_ARG(type, name) __global type* name,
 #define KD_TRACE_VALUE_ARG(type, name) type name,

@@ -54,12 +54,12 @@ TraceKernelBuild trace_kernel_build(const DeviceSelection& device, bool gpu, boo
   // One ray per work-item on a GPU, which vectorises across work-items. On a CPU device (PoCL)
   // a work-item runs as scalar code and waits on its node fetches: it traces 24 rays in lanes
   // where the tree is large enough, else one ray whose far children are prefetched when pushed;
-  // GPU compilers need not know __builtin_prefetch.
+  // GPU compilers need not know __builtin_prefetch. A CPU's work-items take 256 rays at a time
+  // from the shared counter (kernels/kd_trace.cl).
   if (gpu) return {options, "one-ray-per-work-item", traversal};
-  if (lanes)
-    return {options + " -DKD_PREFETCH_NODES -DKD_TRACE_LANES", "24-rays-per-work-item-in-float8-lanes+prefetch",
-            traversal};
-  return {options + " -DKD_PREFETCH_NODES", "one-ray-per-work-item+prefetch", traversal};
+  const std::string cpu_options = options + " -DKD_PREFETCH_NODES -DKD_TRACE_BATCH=256u";
+  if (lanes) return {cpu_options + " -DKD_TRACE_LANES", "24-rays-per-work-item-in-float8-lanes+prefetch", traversal};
+  return {cpu_options, "one-ray-per-work-item+prefetch", traversal};
 }
 
 std::vector<HitRecord> trace_rays_opencl(const KdTree& tree, const std::vector<RayRecord>& rays,

@@ -1,7 +1,10 @@
-// embree_trace SCENE.kdscene RAYS [THREADS] [--robust] [--hits OUT]: the yardstick of
-// bench/traverse.sh. Traces a kdray ray file with Embree 3 (rtcIntersect1, one ray at a time,
-// high-quality BVH build) and prints one line: rays, hits, seconds, Mrays/s. Built by
-// bench/traverse.sh itself against Debian's libembree-dev, never by the project's CMake.
+// embree_trace SCENE.kdscene RAYS [THREADS] [--robust] [--packets16] [--hits OUT]: the yardstick
+// of bench/traverse.sh. Traces a kdray ray file with Embree 3 (rtcIntersect1, one ray at a time,
+// high-quality BVH build) and prints one line: rays, hits, seconds, Mrays/s. --packets16 traces
+// 16 consecutive rays of the file per rtcIntersect16 call instead: the hybrid packet entry point
+// Mitsuba 3's LLVM backend traces its lanes' rays with (packet traversal where the rays run
+// together, one ray at a time below where they part). Built by bench/traverse.sh itself against
+// Debian's libembree-dev, never by the project's CMake.
 // Reads only what it needs of the .kdscene container (formats/container.md, kdscene.md):
 // the positions (section 1) and indices (section 2); no checksum check (the file is kdray's).
 #include <embree3/rtcore.h>
@@ -66,14 +69,15 @@ std::pair<uint64_t, uint64_t> section(const std::vector<char>& file, uint32_t id
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 3) fail("usage: embree_trace SCENE.kdscene RAYS [THREADS] [--robust] [--hits OUT]");
+  if (argc < 3) fail("usage: embree_trace SCENE.kdscene RAYS [THREADS] [--robust] [--packets16] [--hits OUT]");
   const std::string scene_path = argv[1], rays_path = argv[2];
   unsigned threads = 2;
-  bool robust = false;
+  bool robust = false, packets16 = false;
   std::string hits_path;
   for (int i = 3; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--robust") robust = true;
+    else if (arg == "--packets16") packets16 = true;
     else if (arg == "--hits" && i + 1 < argc) hits_path = argv[++i];
     else threads = static_cast<unsigned>(std::atoi(argv[i]));
   }
@@ -107,6 +111,34 @@ int main(int argc, char** argv) {
 
   std::vector<Hit> hits(rays.size());
   std::atomic<size_t> next{0};
+  // Rays [first, end) 16 at a time through rtcIntersect16, the last packet's spare lanes invalid.
+  auto trace_packets16 = [&](size_t first, size_t end) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    for (size_t i = first; i < end; i += 16) {
+      alignas(64) RTCRayHit16 packet;
+      alignas(64) int valid[16];
+      for (int l = 0; l < 16; ++l) {
+        valid[l] = i + l < end ? -1 : 0;
+        const Ray& r = rays[i + l < end ? i + l : i];
+        packet.ray.org_x[l] = r.ox, packet.ray.org_y[l] = r.oy, packet.ray.org_z[l] = r.oz;
+        packet.ray.dir_x[l] = r.dx, packet.ray.dir_y[l] = r.dy, packet.ray.dir_z[l] = r.dz;
+        packet.ray.tnear[l] = r.tmin > 0 ? r.tmin : 0.0f;
+        packet.ray.tfar[l] = r.tmax;
+        packet.ray.time[l] = 0;
+        packet.ray.mask[l] = 0xFFFFFFFFu;
+        packet.ray.id[l] = 0;
+        packet.ray.flags[l] = 0;
+        packet.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
+      }
+      rtcIntersect16(valid, scene, &context, &packet);
+      for (size_t l = 0; l < 16 && i + l < end; ++l)
+        hits[i + l] = packet.hit.geomID[l] == RTC_INVALID_GEOMETRY_ID
+                          ? Hit{INFINITY, 0xFFFFFFFFu, 0, 0}
+                          : Hit{packet.ray.tfar[l], packet.hit.primID[l], packet.hit.u[l], packet.hit.v[l]};
+    }
+  };
   auto worker = [&] {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -115,6 +147,10 @@ int main(int argc, char** argv) {
       const size_t first = next.fetch_add(kBatch);
       if (first >= rays.size()) break;
       const size_t end = std::min(first + kBatch, rays.size());
+      if (packets16) {
+        trace_packets16(first, end);
+        continue;
+      }
       for (size_t i = first; i < end; ++i) {
         const Ray& r = rays[i];
         RTCRayHit rh;

@@ -6,7 +6,8 @@
 # work: inner-node steps, leaves, triangle tests (kdtrace --json) and instructions (callgrind over
 # the host build's trace_closest, one thread, on 20000 rays of the same kind: random rays of seed 1,
 # camera rays at 160x125; "-" without valgrind). Compiles bench/embree_trace.cpp itself (needs
-# libembree-dev); the project's CMake never builds it.
+# libembree-dev); the project's CMake never builds it. Each tracer's clock times the tracing
+# alone: kdtrace, on every device, and the harness make their hits' storage before it starts.
 #   BUILD=build RUNS=3 RAYS=4000000 THREADS=2 [MESHES="NAME=PATH ..."] bench/traverse.sh
 # RAYS: 4M by default, so that a run on the Cornell box's tree (in cache, about 17M rays a second
 # on 2 cores) lasts a quarter of a second: runs of 1M, 60 ms, moved with the machine's swings

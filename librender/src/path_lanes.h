@@ -1,21 +1,25 @@
 // The host's path tracer 8 paths at a time in AVX2 lanes (for any scene whose arrays the gathers
-// reach, apply() below). Each step traces the closest hits of the live paths one after another
-// (kernels/kd_traverse.h) and shades them all at once with pt_path_shade's parts: the hit point
-// and its smooth normal, emission with MIS, Russian roulette, next-event estimation (the light
-// kind picked in lanes; the triangle lights in lanes; the environment's and punctual lights'
-// samples lane by lane, their shadow rays in lanes) and the BSDF sample, for every material but
-// alpha-tested ones and textured emitters (Lambertian, glTF metallic-roughness, rough conductor,
-// mirror, glass; textures looked up lane by lane). Those, and a ray that leaves the scene towards
-// an environment, are shaded by pt_path_shade lane by lane, and their paths stay in their lanes.
-// Then the shadow rays are traced; a path that ends is added to the film and its lane takes the
-// next path. Paths take their first segment eight at a time before they take a lane
-// (FirstSegments): the camera rays and shadow rays of eight samples in a row run close together,
-// and are traced as one packet each (kdray::trace_packet). The shading in lanes calls the device
-// code's lane functions (kernels/kd_lane.h) with 8-float lanes (lane8.h), so each lane computes
-// what pt_path_shade computes for its path, bit for bit, and the film is the scalar path
-// tracer's and the kernel's (tests/render/cpu_integrator.h compares them). A path's start is
-// computed in lanes for the eight paths begun together (begin_in_lanes); the film sums stay
-// scalar, lane by lane.
+// reach, apply() below), with up to kGroups groups of eight paths in flight per thread. Each step
+// traces the closest hits of all live paths, then shades them a group at a time with
+// pt_path_shade's parts: the hit point and its smooth normal, emission with MIS, Russian roulette,
+// next-event estimation (the light kind picked in lanes; the triangle lights in lanes; the
+// environment's and punctual lights' samples lane by lane, their shadow rays in lanes) and the
+// BSDF sample, for every material but alpha-tested ones and textured emitters (Lambertian, glTF
+// metallic-roughness, rough conductor, mirror, glass; textures looked up lane by lane). Those, and
+// a ray that leaves the scene towards an environment, are shaded by pt_path_shade lane by lane,
+// and their paths stay in their lanes. Then the shadow rays of all groups are traced; a path that
+// ends is added to the film and its lane takes the next path, and the live paths are moved into
+// the lowest groups. A step's rays are traced as packets of eight (kdray::trace_packet) in an order
+// sorted by their origin's cell and direction's cell (RayOrder): paths' later rays run apart, and
+// one at a time a packet of eight arbitrary ones pays for the union of their nodes, but among a
+// couple of thousand rays sorted so, eight neighbours run close together. Paths take their first
+// segment eight at a time before they take a lane (FirstSegments): the camera rays and shadow
+// rays of eight samples in a row run close together already, and are traced as one packet each.
+// The shading in lanes calls the device code's lane functions (kernels/kd_lane.h) with 8-float
+// lanes (lane8.h), so each lane computes what pt_path_shade computes for its path, bit for bit;
+// a packet's hits are one ray at a time's; and the film is the scalar path tracer's and the
+// kernel's (tests/render/cpu_integrator.h compares them). A path's start is computed in lanes for
+// the eight paths begun together (begin_in_lanes); the film sums stay scalar, lane by lane.
 //
 // Compiled into the x86-64-v3 build of render_host_pixels.cpp, inside its namespace after the
 // device code, whose functions it calls.
@@ -754,47 +758,196 @@ struct FirstSegments {
   }
 };
 
+// Where a ray goes in the order its batch is traced in (19 bits): its origin's cell in a 16 x 16 x
+// 16 grid over the scene's bounds in Morton order, then its direction's octant and a 4 x 4 cell of
+// |x| and |y| over |x| + |y| + |z|. Rays of a batch sorted by it run close together in runs of
+// eight, so that a packet pays for a node's step and a triangle's test once for all of them.
+// (Direction first, or a finer grid, made the packets slower: bench/LOG.md.)
+struct RayOrder {
+  FloatVector lo[3], scale[3];
+
+  explicit RayOrder(const PtSceneData* scene) {
+    for (int k = 0; k < 3; ++k) {
+      const float extent = scene->kd.bounds_max[k] - scene->kd.bounds_min[k];
+      lo[k] = FloatVector{} + scene->kd.bounds_min[k];
+      scale[k] = FloatVector{} + (extent > 0.0f ? 16.0f / extent : 0.0f);
+    }
+  }
+  // x's cell of `cells` (x in [0, cells)); NaN in cell 0.
+  static IntVector cell(FloatVector x, float cells) {
+    const __m256 at_least_0 = _mm256_max_ps((__m256)x, _mm256_setzero_ps());  // NaN: 0
+    return (IntVector)_mm256_cvttps_epi32(_mm256_min_ps(at_least_0, _mm256_set1_ps(cells - 0.5f)));
+  }
+  // 4 bits b3 b2 b1 b0 spread to b3 0 0 b2 0 0 b1 0 0 b0.
+  static IntVector spread(IntVector v) {
+    v = (v | v << 4) & 0x0C3;
+    return (v | v << 2) & 0x249;
+  }
+  // The keys of 8 rays.
+  IntVector keys(FloatVector ox, FloatVector oy, FloatVector oz, FloatVector dx, FloatVector dy, FloatVector dz) const {
+    const FloatVector ax = (FloatVector)((IntVector)dx & 0x7fffffff), ay = (FloatVector)((IntVector)dy & 0x7fffffff),
+                      az = (FloatVector)((IntVector)dz & 0x7fffffff);
+    const FloatVector to_cells = 4.0f / (ax + ay + az);
+    const IntVector octant = ((dx < 0.0f) & 1) | ((dy < 0.0f) & 2) | ((dz < 0.0f) & 4);
+    const IntVector direction = octant << 4 | cell(ax * to_cells, 4.0f) << 2 | cell(ay * to_cells, 4.0f);
+    const IntVector origin = spread(cell((ox - lo[0]) * scale[0], 16.0f)) |
+                             spread(cell((oy - lo[1]) * scale[1], 16.0f)) << 1 |
+                             spread(cell((oz - lo[2]) * scale[2], 16.0f)) << 2;
+    return origin << 7 | direction;
+  }
+};
+
+// A thread's paths in flight: kGroups groups of eight lanes, shaded a group at a time; each
+// step's closest rays, and then its shadow rays, are traced together as packets of eight in
+// RayOrder. Fewer sort into less coherent packets, more outgrow the L2 cache (bench/LOG.md,
+// "Paths' rays sorted into packets").
+constexpr int kGroups = 256;
+constexpr int kBatchRays = kGroups * kLanes;
+
+struct Batch {
+  Paths groups[kGroups];
+  HitRecord hits[kBatchRays];  // by lane, group after group (shade() reads a lane without a path too)
+  RayRecord rays[kBatchRays];
+  uint32_t keys[kBatchRays];
+  uint16_t slot[kBatchRays];   // each ray's lane, as 8 x group + lane
+  uint16_t order[kBatchRays], scratch[kBatchRays];
+  int count = 0;  // rays gathered
+};
+
+// Appends to the batch the rays of group g's lanes in `lanes` (origins o, directions d, tmin 0,
+// tmax), with their keys and slots.
+inline void add_rays(Batch& batch, const RayOrder& order, int g, int lanes, const float* ox, const float* oy,
+                     const float* oz, const float* dx, const float* dy, const float* dz, float tmax) {
+  __m256 words[kLanes] = {_mm256_loadu_ps(ox), _mm256_loadu_ps(oy), _mm256_loadu_ps(oz),
+                          _mm256_loadu_ps(dx), _mm256_loadu_ps(dy), _mm256_loadu_ps(dz),
+                          _mm256_setzero_ps(),  _mm256_set1_ps(tmax)};
+  alignas(32) int32_t keys[kLanes];
+  store(keys, Int8(order.keys((FloatVector)words[0], (FloatVector)words[1], (FloatVector)words[2],
+                              (FloatVector)words[3], (FloatVector)words[4], (FloatVector)words[5])));
+  transpose(words);
+  for (; lanes; lanes &= lanes - 1) {
+    const int l = __builtin_ctz(lanes);
+    _mm256_storeu_ps(reinterpret_cast<float*>(&batch.rays[batch.count]), words[l]);
+    batch.keys[batch.count] = (uint32_t)keys[l];
+    batch.slot[batch.count++] = (uint16_t)(g * kLanes + l);
+  }
+}
+
+// batch.order[0, count): the rays' indices sorted by key (19 bits), stable: a counting sort on the
+// low 10 bits, then on the high 9.
+inline void sort_rays(Batch& batch) {
+  const int n = batch.count;
+  uint32_t start[1024];
+  std::memset(start, 0, sizeof start);
+  for (int i = 0; i < n; ++i) ++start[batch.keys[i] & 1023u];
+  for (uint32_t b = 0, sum = 0; b < 1024; ++b) sum += std::exchange(start[b], sum);
+  for (int i = 0; i < n; ++i) batch.scratch[start[batch.keys[i] & 1023u]++] = (uint16_t)i;
+  std::memset(start, 0, 512 * sizeof start[0]);
+  for (int i = 0; i < n; ++i) ++start[batch.keys[i] >> 10];
+  for (uint32_t b = 0, sum = 0; b < 512; ++b) sum += std::exchange(start[b], sum);
+  for (int i = 0; i < n; ++i) {
+    const uint16_t ray = batch.scratch[i];
+    batch.order[start[batch.keys[ray] >> 10]++] = ray;
+  }
+}
+
+// Moves the live paths of groups [0, used) into the lowest lanes they can take, so that every group
+// but the last is full and shading takes as few groups as there are paths for; returns the groups
+// that hold them.
+inline int compact(Paths* groups, int used) {
+  int low = 0, high = used - 1;
+  for (;;) {
+    while (low < high && groups[low].alive == 0xff) ++low;
+    while (high > low && groups[high].alive == 0) --high;
+    if (low >= high) return groups[low].alive ? low + 1 : low;
+    while (groups[low].alive != 0xff && groups[high].alive)
+      move_path(groups[low], __builtin_ctz(~groups[low].alive), groups[high], __builtin_ctz(groups[high].alive));
+  }
+}
+
 // pt_render_pixel for pixels [begin_pixel, end_pixel): the rays traced. Each path's arithmetic is
-// the same whichever lane takes it, and the film's sums are integers, so the film does not depend
-// on which lane took which path.
+// the same whichever lane takes it and whatever packet traces its rays (a packet's hits are one
+// ray at a time's), and the film's sums are integers, so the film does not depend on which lane
+// took which path.
 inline uint64_t render(const PtSceneData* scene, const PtRenderParams* params, uint32_t begin_pixel, uint32_t end_pixel,
                        int64_t* film, uint32_t* nonfinite) {
   if (params->sample_count == 0) return 0;
   const kdray::TraversalArrays arrays{scene->kd.nodes, scene->kd.leaf_blocks,
                                       {scene->kd.bounds_min[0], scene->kd.bounds_min[1], scene->kd.bounds_min[2]},
                                       {scene->kd.bounds_max[0], scene->kd.bounds_max[1], scene->kd.bounds_max[2]}};
-  // Zeroed: a lane that has no path still takes part in the lanes' integer arithmetic, which its
-  // leftover bits could make overflow (UBSan).
-  Paths ps{};
+  const RayOrder ray_order(scene);
+  // The thread's own, zeroed once: a lane that has no path still takes part in the lanes' integer
+  // arithmetic, which uninitialised bits could make overflow (UBSan); a path's leftovers cannot.
+  thread_local std::unique_ptr<Batch> owned(new Batch());
+  Batch& batch = *owned;
   FirstSegments first;
   first.next_pixel = begin_pixel;
   first.end_pixel = end_pixel;
   uint64_t rays = 0;
-  // Lane l takes the next path that goes on after its first segment, if any is left.
-  auto refill = [&](int l) {
+  // Lane l of ps takes the next path that goes on after its first segment, if any is left.
+  auto refill = [&](Paths& ps, int l) {
     while (!first.paths.alive)
       if (!first.next(scene, params, arrays, film, nonfinite)) return;
     move_path(ps, l, first.paths, __builtin_ctz(first.paths.alive));
   };
-  for (int l = 0; l < kLanes; ++l) refill(l);
-  HitRecord hits[kLanes] = {};  // all read by shade(), a lane without a path as well
-  while (ps.alive) {
-    for (int l = 0; l < kLanes; ++l)
-      if (ps.alive >> l & 1) {
-        hits[l] = kd_intersect_closest(&scene->kd, pt_ray(KD_FLOAT3(ps.ox[l], ps.oy[l], ps.oz[l]),
-                                                          KD_FLOAT3(ps.dx[l], ps.dy[l], ps.dz[l]), INFINITY));
-        ++rays;
+  int used = 0;  // groups [0, used) hold the live paths, every lane but the last group's taken
+  for (; used < kGroups && (first.paths.alive || first.next_pixel != first.end_pixel); ++used)
+    for (int l = 0; l < kLanes; ++l) refill(batch.groups[used], l);
+  const bool alpha = PT_USES(params, PT_FEATURE_ALPHA);
+  int was_alive[kGroups];
+  while (used > 0) {
+    // The closest hits of every live path, traced in packets in ray order.
+    batch.count = 0;
+    for (int g = 0; g < used; ++g) {
+      const Paths& ps = batch.groups[g];
+      add_rays(batch, ray_order, g, ps.alive, ps.ox, ps.oy, ps.oz, ps.dx, ps.dy, ps.dz, INFINITY);
+    }
+    rays += (uint64_t)batch.count;
+    sort_rays(batch);
+    for (int i = 0; i < batch.count; i += kLanes) {
+      const int n = std::min(kLanes, batch.count - i);
+      RayRecord packet[kLanes];
+      HitRecord hits[kLanes];
+      for (int j = 0; j < n; ++j) packet[j] = batch.rays[batch.order[i + j]];
+      kdray::trace_packet(arrays, packet, n, hits);
+      for (int j = 0; j < n; ++j) batch.hits[batch.slot[batch.order[i + j]]] = hits[j];
+    }
+    for (int g = 0; g < used; ++g) {
+      was_alive[g] = batch.groups[g].alive;
+      shade(batch.groups[g], scene, params, batch.hits + g * kLanes);
+    }
+    // The shadow rays, likewise (with alpha-tested surfaces, one at a time: trace_shadow_rays).
+    batch.count = 0;
+    for (int g = 0; g < used; ++g) {
+      Paths& ps = batch.groups[g];
+      rays += (uint64_t)__builtin_popcount(ps.shadow);
+      if (alpha) trace_shadow_rays(ps, scene, params, nullptr);
+      else add_rays(batch, ray_order, g, ps.shadow, ps.sox, ps.soy, ps.soz, ps.ssx, ps.ssy, ps.ssz, 1.0f);
+    }
+    sort_rays(batch);
+    for (int i = 0; i < batch.count; i += kLanes) {
+      const int n = std::min(kLanes, batch.count - i);
+      RayRecord packet[kLanes];
+      uint8_t occluded[kLanes];
+      for (int j = 0; j < n; ++j) packet[j] = batch.rays[batch.order[i + j]];
+      kdray::trace_packet_any(arrays, packet, n, occluded);
+      for (int j = 0; j < n; ++j) {
+        if (occluded[j]) continue;
+        const int slot = batch.slot[batch.order[i + j]];
+        Paths& ps = batch.groups[slot / kLanes];
+        const int l = slot % kLanes;
+        ps.rx[l] += ps.scx[l], ps.ry[l] += ps.scy[l], ps.rz[l] += ps.scz[l];
       }
-    const int was_alive = ps.alive;
-    shade(ps, scene, params, hits);
-    rays += (uint64_t)__builtin_popcount(ps.shadow);
-    trace_shadow_rays(ps, scene, params, nullptr);
-    const int ended = was_alive & ~ps.alive;
-    for (int l = 0; l < kLanes; ++l)
-      if (ended >> l & 1) {
+    }
+    for (int g = 0; g < used; ++g) {
+      Paths& ps = batch.groups[g];
+      for (int ended = was_alive[g] & ~ps.alive; ended; ended &= ended - 1) {
+        const int l = __builtin_ctz(ended);
         accumulate(ps, l, params, film, nonfinite);
-        refill(l);
+        refill(ps, l);
       }
+    }
+    used = compact(batch.groups, used);
   }
   return rays + first.rays;
 }

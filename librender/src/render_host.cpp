@@ -34,8 +34,10 @@
 namespace kdray {
 namespace {
 
-// Pixels per task: consecutive pixels of a row, whose rays are coherent.
-constexpr uint32_t kPixelsPerTask = 16;
+// Pixels per task: consecutive pixels of a row, whose rays are coherent, and enough paths that
+// the paths in lanes keep their batch of rays full (path_lanes.h: 2048 paths in flight) in passes
+// of 8 samples and more.
+constexpr uint32_t kPixelsPerTask = 256;
 
 class HostRender : public RenderWorker {
  public:

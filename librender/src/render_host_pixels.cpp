@@ -36,6 +36,11 @@
 
 #include <kdray/traverse.h>  // the packets of path_lanes.h
 
+#include <algorithm>  // path_lanes.h's batch
+#include <cstring>
+#include <memory>
+#include <utility>
+
 #include <kernels/kd_vector.h>
 
 #ifdef __AVX2__

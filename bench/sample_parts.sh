@@ -6,8 +6,9 @@
 # the pixel loop), so only the line tables say what code a sample is in: BUILD must be a build
 # with them (`cmake -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS=-g`: the same code, debug
 # information added). The parts, by file:
-#   traversal   kd_geometry.h, kd_traverse*.h, kd_scene_view.h, kd_types.h (closest and shadow
-#               rays: ray setup, the steps, the leaf and triangle tests)
+#   traversal   kd_geometry.h, kd_traverse*.h, kd_scene_view.h, kd_types.h, libkdtree's
+#               traversal_*.cpp (closest and shadow rays, one at a time or in packets: ray setup,
+#               the steps, the leaf and triangle tests)
 #   samples     pt_rng.h: the sample values (hashed, scrambled Sobol' points)
 #   light       pt_direct_light.h, pt_lights.h, pt_spherical_triangle.h, pt_environment.h:
 #               next-event estimation
@@ -49,7 +50,7 @@ SIZE="--width 256 --height 256 --max-bounces 8 --spp $SPP --device host --thread
 parts() {
   perf report -i "$1" --no-children --sort srcfile --stdio 2> /dev/null | /usr/bin/python3 -c '
 import re, sys
-parts = [("traversal", r"^kd_(geometry|traverse\w*|scene_view|types)\.h$"),
+parts = [("traversal", r"^(kd_(geometry|traverse\w*|scene_view|types)\.h|traversal_\w+\.cpp)$"),
          ("samples", r"^pt_rng\.h$"),
          ("light", r"^pt_(direct_light|lights|spherical_triangle|environment)\.h$"),
          ("shading", r"^pt_(path|bsdf|material|sampling|texture\w*)\.h$"),

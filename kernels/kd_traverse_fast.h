@@ -39,17 +39,16 @@ KD_INLINE kd_u32 kd_ray_descending_axes(const KdRay* ray) {
 
 #define KD_FAST_OVERFLOW 2
 
-/* kd_traverse_pass for a ray that kd_ray_takes_fast_path, with a plain stack: returns 1 when
- * any_hit is set and a hit was found, 0 when done, KD_FAST_OVERFLOW when the stack overflowed
- * (best is then partial, and the ray must be traced robustly). */
-KD_INLINE int kd_traverse_fast(const KdSceneView* scene, const KdRay* ray, float scene_t_min, float scene_t_max,
-                               HitRecord* best, int any_hit) {
+/* kd_traverse_pass for a ray that kd_ray_takes_fast_path, with a plain stack, through the subtree
+ * at node_index over the ray's segment [t_min, t_max] there (the root and the segment in the root
+ * voxel for a whole trace; the host's packets hand a lane over at any node, with best its hit so
+ * far): returns 1 when any_hit is set and a hit was found, 0 when done, KD_FAST_OVERFLOW when the
+ * stack overflowed (best is then partial, and the ray must be traced robustly). */
+KD_INLINE int kd_traverse_fast_from(const KdSceneView* scene, const KdRay* ray, kd_u32 node_index, float t_min,
+                                    float t_max, HitRecord* best, int any_hit) {
   KdStackEntry stack[KD_SHORT_STACK_SIZE];
   int stack_count = 0;
   const kd_u32 descending = kd_ray_descending_axes(ray);
-  kd_u32 node_index = 0;
-  float t_min = scene_t_min;
-  float t_max = scene_t_max;
   for (;;) {
     float far_below = kd_fast_far_bound(t_min);
     float near_above = t_max * (1.0f + KD_T_EPSILON);
@@ -121,6 +120,12 @@ KD_INLINE int kd_traverse_fast(const KdSceneView* scene, const KdRay* ray, float
     t_min = stack[stack_count].t_min;
     t_max = stack[stack_count].t_max;
   }
+}
+
+/* The whole trace: from the root over the segment in the root voxel. */
+KD_INLINE int kd_traverse_fast(const KdSceneView* scene, const KdRay* ray, float scene_t_min, float scene_t_max,
+                               HitRecord* best, int any_hit) {
+  return kd_traverse_fast_from(scene, ray, 0u, scene_t_min, scene_t_max, best, any_hit);
 }
 #endif
 

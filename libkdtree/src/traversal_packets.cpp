@@ -10,7 +10,9 @@
 // order differs from its own; its triangle tests are the watertight test's operations in the
 // same order (KD_WATERTIGHT_EDGES_FROM), and a hit replaces the best one by kd_hit_precedes's rule,
 // whose result is the smallest (t, triangle) pair whatever the leaves visited in whatever order.
-// A ray the fast path does not take (a zero direction component) is traced alone, robustly.
+// A ray the fast path does not take (a zero direction component) is traced alone, robustly. A lane
+// left alone in a subtree finishes it alone, on the one-ray fast path from that node (as Embree's
+// hybrid packets go on one ray at a time where their rays part).
 #include "traversal_variant.h"
 
 #include <kdray/traverse.h>
@@ -208,6 +210,27 @@ void intersect_leaf(Packet& p, const KdSceneView* scene, KdNode leaf, int lanes,
   }
 }
 
+// Lanes `lanes` of the packet, each alone through the subtree at node_index over its segment there
+// (kd_traverse_fast_from: the one-ray fast path, whose decisions the packet's lanes make), with
+// its best hit so far. A lane whose short stack overflows leaves p.fast: the caller traces that
+// ray again, alone.
+void trace_singly(Packet& p, const KdSceneView* scene, kd_u32 node_index, int lanes, Floats t_min, Floats t_max,
+                  bool any_hit) {
+  for (; lanes; lanes &= lanes - 1) {
+    const int l = __builtin_ctz(lanes);
+    const KdRay ray = lane_ray(p, l);
+    HitRecord best;
+    best.t = p.best_t[l], best.triangle = (kd_u32)p.best_triangle[l], best.u = p.best_u[l], best.v = p.best_v[l];
+    const int result = kd_traverse_fast_from(scene, &ray, node_index, t_min[l], t_max[l], &best, any_hit);
+    if (result == KD_FAST_OVERFLOW) {
+      p.fast &= ~(1 << l);
+      continue;
+    }
+    p.best_t[l] = best.t, p.best_triangle[l] = (int32_t)best.triangle, p.best_u[l] = best.u, p.best_v[l] = best.v;
+    if (any_hit && result == 1) p.done |= 1 << l;
+  }
+}
+
 struct PacketEntry {
   Floats t_min, t_max;
   kd_u32 node;
@@ -229,6 +252,12 @@ void traverse(Packet& p, const KdSceneView* scene, bool any_hit) {
   for (;;) {
     KdNode node = scene->nodes[node_index];
     while (!kd_node_is_leaf(node)) {
+      // One lane left: it goes on alone, without the packet's masks and union of nodes.
+      if ((lanes & (lanes - 1)) == 0) {
+        trace_singly(p, scene, node_index, lanes, t_min, t_max, any_hit);
+        lanes = 0;
+        break;
+      }
       const kd_u32 axis = kd_node_axis(node);
       const Floats t_split = (splat(kd_node_split(node)) - p.org[axis]) * p.inv_dir[axis];
       const Floats far_below = max_of(t_min * below_one, smallest);  // kd_fast_far_bound
@@ -273,7 +302,7 @@ void traverse(Packet& p, const KdSceneView* scene, bool any_hit) {
       if (depth == 0) return;
       const PacketEntry& entry = stack[--depth];
       const Ints may = (entry.t_min <= p.best_t * above_one) & (entry.t_min < splat(INFINITY));
-      lanes = entry.lanes & ~p.done & bits_of(may);
+      lanes = entry.lanes & ~p.done & p.fast & bits_of(may);
       if (lanes) {
         node_index = entry.node, t_min = entry.t_min, t_max = entry.t_max;
         break;

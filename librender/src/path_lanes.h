@@ -851,6 +851,19 @@ inline void sort_rays(Batch& batch) {
   }
 }
 
+// Sorts the batch's rays (sort_rays) and hands them to trace(packet, n, ray) eight at a time in
+// that order: packet[j] is the batch's ray number ray[j], j < n.
+template <typename TracePacket>
+inline void trace_sorted(Batch& batch, const TracePacket& trace) {
+  sort_rays(batch);
+  for (int i = 0; i < batch.count; i += kLanes) {
+    const int n = std::min(kLanes, batch.count - i);
+    RayRecord packet[kLanes];
+    for (int j = 0; j < n; ++j) packet[j] = batch.rays[batch.order[i + j]];
+    trace(packet, n, batch.order + i);
+  }
+}
+
 // Moves the live paths of groups [0, used) into the lowest lanes they can take, so that every group
 // but the last is full and shading takes as few groups as there are paths for; returns the groups
 // that hold them.
@@ -903,15 +916,11 @@ inline uint64_t render(const PtSceneData* scene, const PtRenderParams* params, u
       add_rays(batch, ray_order, g, ps.alive, ps.ox, ps.oy, ps.oz, ps.dx, ps.dy, ps.dz, INFINITY);
     }
     rays += (uint64_t)batch.count;
-    sort_rays(batch);
-    for (int i = 0; i < batch.count; i += kLanes) {
-      const int n = std::min(kLanes, batch.count - i);
-      RayRecord packet[kLanes];
+    trace_sorted(batch, [&](const RayRecord* packet, int n, const uint16_t* ray) {
       HitRecord hits[kLanes];
-      for (int j = 0; j < n; ++j) packet[j] = batch.rays[batch.order[i + j]];
       kdray::trace_packet(arrays, packet, n, hits);
-      for (int j = 0; j < n; ++j) batch.hits[batch.slot[batch.order[i + j]]] = hits[j];
-    }
+      for (int j = 0; j < n; ++j) batch.hits[batch.slot[ray[j]]] = hits[j];
+    });
     for (int g = 0; g < used; ++g) {
       was_alive[g] = batch.groups[g].alive;
       shade(batch.groups[g], scene, params, batch.hits + g * kLanes);
@@ -924,21 +933,17 @@ inline uint64_t render(const PtSceneData* scene, const PtRenderParams* params, u
       if (alpha) trace_shadow_rays(ps, scene, params, nullptr);
       else add_rays(batch, ray_order, g, ps.shadow, ps.sox, ps.soy, ps.soz, ps.ssx, ps.ssy, ps.ssz, 1.0f);
     }
-    sort_rays(batch);
-    for (int i = 0; i < batch.count; i += kLanes) {
-      const int n = std::min(kLanes, batch.count - i);
-      RayRecord packet[kLanes];
+    trace_sorted(batch, [&](const RayRecord* packet, int n, const uint16_t* ray) {
       uint8_t occluded[kLanes];
-      for (int j = 0; j < n; ++j) packet[j] = batch.rays[batch.order[i + j]];
       kdray::trace_packet_any(arrays, packet, n, occluded);
       for (int j = 0; j < n; ++j) {
         if (occluded[j]) continue;
-        const int slot = batch.slot[batch.order[i + j]];
+        const int slot = batch.slot[ray[j]];
         Paths& ps = batch.groups[slot / kLanes];
         const int l = slot % kLanes;
         ps.rx[l] += ps.scx[l], ps.ry[l] += ps.scy[l], ps.rz[l] += ps.scz[l];
       }
-    }
+    });
     for (int g = 0; g < used; ++g) {
       Paths& ps = batch.groups[g];
       for (int ended = was_alive[g] & ~ps.alive; ended; ended &= ended - 1) {

@@ -93,6 +93,28 @@ TEST_F(TraversalPackets, SameHitsWhereTheShortStackOverflows) {
   expect_packets_match_one_ray_at_a_time(deep.tree, deep.rays, "icosphere");
 }
 
+// A lane left alone in a subtree goes on alone on the one-ray fast path; where its short stack
+// overflows there, the packet leaves it to be traced again. A packet of one ray is alone from the
+// root, so on a tree deeper than the short stack some of them overflow.
+TEST_F(TraversalPackets, ALoneLaneWhoseShortStackOverflowsIsTracedAgain) {
+  const test::DeepTree deep = test::deep_tree_and_rays();
+  std::vector<HitRecord> one;
+  const TraversalWork work = count_traversal_work(deep.tree, deep.rays, one);
+  ASSERT_GT(work.fast_path_restarts, 0u) << "no ray overflows the short stack: the test tests nothing";
+  const TraversalArrays arrays = traversal_arrays(deep.tree);
+  size_t differing = 0;
+  uint8_t occluded = 0;
+  for (size_t i = 0; i < deep.rays.size(); ++i) {
+    HitRecord hit;
+    trace_packet(arrays, &deep.rays[i], 1, &hit);
+    differing += std::memcmp(&hit, &one[i], sizeof hit) != 0;
+    trace_packet_any(arrays, &deep.rays[i], 1, &occluded);
+    differing += occluded != (one[i].triangle != KD_NO_HIT && one[i].t < deep.rays[i].tmax);
+  }
+  EXPECT_EQ(differing, 0u) << "of " << deep.rays.size() << " rays, " << work.fast_path_restarts
+                           << " of which overflow the short stack";
+}
+
 // A packet of fewer rays than lanes, and one whose rays mostly miss, from the public entry points.
 TEST_F(TraversalPackets, PartialPacketsAndMisses) {
   const Scene scene = test::box_room();

@@ -69,12 +69,13 @@ struct Packet {
   Floats t_min, t_max;  // the segment in the root voxel
 };
 
-// Lane l's KdRay, for a test that recomputes in double (kd_ray_triangle_line).
+// Lane l's KdRay, for the one-ray code: a test that recomputes in double (kd_ray_triangle_line),
+// and a lane finishing a subtree alone (trace_singly). Neither reads its tmax.
 KdRay lane_ray(const Packet& p, int l) {
   KdRay ray;
   for (int k = 0; k < 3; ++k) ray.org[k] = p.org[k][l], ray.dir[k] = p.dir[k][l], ray.inv_dir[k] = p.inv_dir[k][l];
   ray.tmin = p.tmin[l];
-  ray.tmax = 0.0f;  // not read by kd_ray_triangle_line
+  ray.tmax = 0.0f;  // not read (above)
   ray.kx = p.kx[l], ray.ky = p.ky[l], ray.kz = p.kz[l];
   ray.sx = p.sx[l], ray.sy = p.sy[l], ray.sz = p.sz[l];
   return ray;

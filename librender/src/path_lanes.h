@@ -681,6 +681,11 @@ inline void move_path(Paths& into, int to, Paths& paths, int from) {
   paths.alive &= ~(1 << from);
 }
 
+// Lane l's shadow ray is not occluded: its light sample's contribution joins the radiance.
+inline void add_light_sample(Paths& ps, int l) {
+  ps.rx[l] += ps.scx[l], ps.ry[l] += ps.scy[l], ps.rz[l] += ps.scz[l];
+}
+
 // The shadow rays of the lanes in ps.shadow, traced one at a time (pt_path_occluded), or with
 // `packet` (the tree's arrays) as one packet (kdray::trace_packet_any) where no surface is
 // alpha-tested: a light sample's contribution is added where its ray is not occluded.
@@ -698,7 +703,7 @@ inline void trace_shadow_rays(Paths& ps, const PtSceneData* scene, const PtRende
     kdray::trace_packet_any(*packet, rays, count, occluded);
     for (int i = 0; i < count; ++i) {
       const int l = lane_of[i];
-      if (!occluded[i]) ps.rx[l] += ps.scx[l], ps.ry[l] += ps.scy[l], ps.rz[l] += ps.scz[l];
+      if (!occluded[i]) add_light_sample(ps, l);
     }
     return;
   }
@@ -708,11 +713,7 @@ inline void trace_shadow_rays(Paths& ps, const PtSceneData* scene, const PtRende
     path.shadow_origin = KD_FLOAT3(ps.sox[l], ps.soy[l], ps.soz[l]);
     path.shadow_span = KD_FLOAT3(ps.ssx[l], ps.ssy[l], ps.ssz[l]);
     path.bounce = (uint32_t)ps.bounce[l];
-    if (!pt_path_occluded(scene, &path, params)) {
-      ps.rx[l] += ps.scx[l];
-      ps.ry[l] += ps.scy[l];
-      ps.rz[l] += ps.scz[l];
-    }
+    if (!pt_path_occluded(scene, &path, params)) add_light_sample(ps, l);
   }
 }
 
@@ -818,6 +819,7 @@ struct Batch {
 // tmax), with their keys and slots.
 inline void add_rays(Batch& batch, const RayOrder& order, int g, int lanes, const float* ox, const float* oy,
                      const float* oz, const float* dx, const float* dy, const float* dz, float tmax) {
+  if (!lanes) return;
   __m256 words[kLanes] = {_mm256_loadu_ps(ox), _mm256_loadu_ps(oy), _mm256_loadu_ps(oz),
                           _mm256_loadu_ps(dx), _mm256_loadu_ps(dy), _mm256_loadu_ps(dz),
                           _mm256_setzero_ps(),  _mm256_set1_ps(tmax)};
@@ -906,6 +908,7 @@ inline uint64_t render(const PtSceneData* scene, const PtRenderParams* params, u
   int used = 0;  // groups [0, used) hold the live paths, every lane but the last group's taken
   for (; used < kGroups && (first.paths.alive || first.next_pixel != first.end_pixel); ++used)
     for (int l = 0; l < kLanes; ++l) refill(batch.groups[used], l);
+  used = compact(batch.groups, used);  // the last paths may all have ended in their first segment
   const bool alpha = PT_USES(params, PT_FEATURE_ALPHA);
   int was_alive[kGroups];
   while (used > 0) {
@@ -936,13 +939,8 @@ inline uint64_t render(const PtSceneData* scene, const PtRenderParams* params, u
     trace_sorted(batch, [&](const RayRecord* packet, int n, const uint16_t* ray) {
       uint8_t occluded[kLanes];
       kdray::trace_packet_any(arrays, packet, n, occluded);
-      for (int j = 0; j < n; ++j) {
-        if (occluded[j]) continue;
-        const int slot = batch.slot[ray[j]];
-        Paths& ps = batch.groups[slot / kLanes];
-        const int l = slot % kLanes;
-        ps.rx[l] += ps.scx[l], ps.ry[l] += ps.scy[l], ps.rz[l] += ps.scz[l];
-      }
+      for (int j = 0; j < n; ++j)
+        if (!occluded[j]) add_light_sample(batch.groups[batch.slot[ray[j]] / kLanes], batch.slot[ray[j]] % kLanes);
     });
     for (int g = 0; g < used; ++g) {
       Paths& ps = batch.groups[g];
